@@ -1,0 +1,463 @@
+#include "dem_system.h"
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace geohybrid::dem
+{
+double deterministic_sum(const std::vector<double> &values, int n_threads)
+{
+  constexpr std::size_t block = 4096;
+  const std::size_t n_blocks = (values.size() + block - 1) / block;
+  double partial_small[64];
+  std::vector<double> partial_large;
+  double *partial = partial_small;
+  if (n_blocks > 64)
+    {
+      partial_large.resize(n_blocks);
+      partial = partial_large.data();
+    }
+#pragma omp parallel for schedule(static) num_threads(n_threads) if (n_blocks > 1)
+  for (std::size_t k = 0; k < n_blocks; ++k)
+    {
+      double s = 0.0;
+      const std::size_t end = std::min(values.size(), (k + 1) * block);
+      for (std::size_t q = k * block; q < end; ++q)
+        s += values[q];
+      partial[k] = s;
+    }
+  double total = 0.0;
+  for (std::size_t k = 0; k < n_blocks; ++k)
+    total += partial[k];
+  return total;
+}
+
+DemSystem::DemSystem(ParticleSet particles, const LinearContactLaw &particle_law, const DemSettings &settings)
+  : particles_(std::move(particles)), particle_law_(particle_law), settings_(settings)
+{
+  if (settings_.n_threads < 1)
+    throw std::invalid_argument("DEM settings: 'threads' must be at least 1");
+  if (settings_.local_damping < 0.0 || settings_.local_damping >= 1.0)
+    throw std::invalid_argument("DEM settings: 'local damping coefficient' must lie in [0, 1)");
+  if (!(settings_.time_step_safety > 0.0 && settings_.time_step_safety <= 1.0))
+    throw std::invalid_argument("DEM settings: 'time step safety factor' must lie in (0, 1]");
+  double r_min = std::numeric_limits<double>::max();
+  for (double r : particles_.disc_radius)
+    r_min = std::min(r_min, r);
+  skin_ = settings_.skin > 0.0 ? settings_.skin : (particles_.n_discs_total() ? 0.4 * r_min : 1e-3);
+  // A bond can hold a gap up to a_n / kn; the skin must cover it so no bonded pair leaves the list.
+  skin_ = std::max(skin_, 1.05 * particle_law_.max_bonded_gap());
+  const std::size_t nb = particles_.n_bodies();
+  damping_fx_.assign(nb, 0.0);
+  damping_fy_.assign(nb, 0.0);
+  damping_torque_.assign(nb, 0.0);
+  body_scratch_.assign(nb, 0.0);
+  particles_.update_disc_positions();
+  set_time_step(settings_.time_step > 0.0 ? settings_.time_step : settings_.time_step_safety * critical_time_step());
+}
+
+std::size_t DemSystem::add_wall(const Wall &wall)
+{
+  if ((wall.end - wall.start).norm() <= 0.0)
+    throw std::invalid_argument("wall '" + wall.name + "': start and end points coincide");
+  walls_.push_back(wall);
+  wall_contacts_.emplace_back();
+  wall_force_previous_.push_back(Vec2::Zero());
+  skin_ = std::max(skin_, 1.05 * wall.law.max_bonded_gap());
+  rebuild_needed_ = true;
+  // A stiffer wall lowers the stable step: re-check a step the user chose.
+  if (time_step_ > critical_time_step())
+    set_time_step(settings_.time_step > 0.0 ? time_step_ : settings_.time_step_safety * critical_time_step());
+  return walls_.size() - 1;
+}
+
+double DemSystem::critical_time_step() const
+{
+  double k_max = std::max(particle_law_.normal_stiffness(), particle_law_.shear_stiffness());
+  double ks_max = particle_law_.shear_stiffness();
+  for (const Wall &w : walls_)
+    {
+      k_max = std::max({k_max, w.law.normal_stiffness(), w.law.shear_stiffness()});
+      ks_max = std::max(ks_max, w.law.shear_stiffness());
+    }
+  const ParticleSet &p = particles_;
+  double dt = std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    {
+      if (p.inverse_mass[b] == 0.0)
+        continue;
+      dt = std::min(dt, std::sqrt(p.mass[b] / k_max));
+      double lever = 0.0;
+      for (std::uint32_t d = p.first_disc[b]; d < p.first_disc[b] + p.n_discs[b]; ++d)
+        lever = std::max(lever, std::hypot(p.disc_offset_x[d], p.disc_offset_y[d]) + p.disc_radius[d]);
+      dt = std::min(dt, std::sqrt(p.inertia[b] / (ks_max * lever * lever)));
+    }
+  return dt;
+}
+
+void DemSystem::set_time_step(double dt)
+{
+  const double dt_crit = critical_time_step();
+  if (!(dt > 0.0) || dt > dt_crit)
+    {
+      std::ostringstream message;
+      message << "time step " << dt << " s is above the stable limit " << dt_crit
+              << " s (sqrt(m_min / k_max) for these particles and stiffnesses); "
+                 "lower 'time step' or leave it 0 for automatic";
+      throw std::invalid_argument(message.str());
+    }
+  time_step_ = dt;
+}
+
+void DemSystem::bond_touching_contacts()
+{
+  for (ContactState &s : pairs_.state)
+    if (s.touching)
+      s.bonded = true;
+  for (WallContacts &wc : wall_contacts_)
+    for (ContactState &s : wc.state)
+      if (s.touching)
+        s.bonded = true;
+}
+
+void DemSystem::run_steps(std::uint64_t n)
+{
+  for (std::uint64_t k = 0; k < n; ++k)
+    step();
+}
+
+void DemSystem::step()
+{
+  if (step_count_ == 0)
+    {
+      // Forces at t = 0, so that the first half kick sees gravity and initial overlaps.
+      // A zero step length keeps the tangential springs and dissipation untouched.
+      const double dt = time_step_;
+      time_step_ = 0.0;
+      rebuild_if_needed();
+      compute_pair_forces();
+      gather_forces_and_kick();
+      time_step_ = dt;
+    }
+  kick_and_drift();
+  move_walls();
+  rebuild_if_needed();
+  compute_pair_forces();
+  gather_forces_and_kick();
+  time_ += time_step_;
+  ++step_count_;
+  if (step_count_ % 64 == 0)
+    check_finite();
+}
+
+void DemSystem::kick_and_drift()
+{
+  ParticleSet &p = particles_;
+  const double dt = time_step_, half = 0.5 * dt;
+  const std::size_t nb = p.n_bodies();
+#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
+  for (std::size_t b = 0; b < nb; ++b)
+    {
+      const double vx0 = p.vx[b], vy0 = p.vy[b], w0 = p.omega[b];
+      p.vx[b] += half * (p.fx[b] + damping_fx_[b]) * p.inverse_mass[b];
+      p.vy[b] += half * (p.fy[b] + damping_fy_[b]) * p.inverse_mass[b];
+      p.omega[b] += half * (p.torque[b] + damping_torque_[b]) * p.inverse_inertia[b];
+      // Work of the damping force during this half kick (exact for a constant force).
+      body_scratch_[b] = 0.5 * half *
+                         (damping_fx_[b] * (vx0 + p.vx[b]) + damping_fy_[b] * (vy0 + p.vy[b]) +
+                          damping_torque_[b] * (w0 + p.omega[b]));
+      p.x[b] += dt * p.vx[b];
+      p.y[b] += dt * p.vy[b];
+      p.rotation[b] += dt * p.omega[b];
+    }
+  if (settings_.track_energy && settings_.local_damping > 0.0)
+    accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
+  p.update_disc_positions();
+}
+
+void DemSystem::move_walls()
+{
+  const double dt = time_step_;
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    {
+      Wall &wall = walls_[w];
+      if (wall.control == WallControl::servo_stress)
+        {
+          // PFC's servo: retreat by the distance that would remove a fraction `relaxation` of the
+          // stress error, given the contacts' stiffness: v = alpha (sigma - sigma_0) L / (N kn dt).
+          const double error = wall.normal_stress() - wall.servo.target_stress;
+          const double n_contacts = std::max<double>(1.0, static_cast<double>(wall.n_contacts));
+          double speed = wall.servo.relaxation * error * wall.length() /
+                         (n_contacts * wall.law.normal_stiffness() * dt);
+          speed = std::clamp(speed, -wall.servo.max_speed, wall.servo.max_speed);
+          wall.velocity = -speed * wall.normal();
+        }
+      wall.translate(dt * wall.velocity);
+    }
+}
+
+void DemSystem::rebuild_if_needed()
+{
+  const ParticleSet &p = particles_;
+  const std::size_t nd = p.n_discs_total();
+  if (!rebuild_needed_)
+    {
+      double max_move2 = 0.0;
+#pragma omp parallel for schedule(static) num_threads(settings_.n_threads) reduction(max : max_move2)
+      for (std::size_t d = 0; d < nd; ++d)
+        {
+          const double dx = p.disc_x[d] - disc_x_at_rebuild_[d], dy = p.disc_y[d] - disc_y_at_rebuild_[d];
+          max_move2 = std::max(max_move2, dx * dx + dy * dy);
+        }
+      const double max_move = std::sqrt(max_move2);
+      double wall_move = 0.0;
+      for (std::size_t w = 0; w < walls_.size(); ++w)
+        wall_move = std::max(wall_move, (walls_[w].start - wall_start_at_rebuild_[w]).norm());
+      rebuild_needed_ = 2.0 * max_move > skin_ || max_move + wall_move > skin_;
+    }
+  if (!rebuild_needed_)
+    return;
+  neighbour_search_.rebuild_pairs(p, skin_, settings_.n_threads, pairs_);
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    neighbour_search_.rebuild_wall(p, walls_[w], skin_, wall_contacts_[w]);
+  disc_x_at_rebuild_ = p.disc_x;
+  disc_y_at_rebuild_ = p.disc_y;
+  wall_start_at_rebuild_.resize(walls_.size());
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    wall_start_at_rebuild_[w] = walls_[w].start;
+  rebuild_needed_ = false;
+  ++n_rebuilds_;
+}
+
+void DemSystem::compute_pair_forces()
+{
+  const ParticleSet &p = particles_;
+  const LinearContactLaw &law = particle_law_;
+  PairContacts &c = pairs_;
+  const double dt = time_step_;
+  const std::size_t n = c.size();
+  std::uint64_t broken = 0;
+#pragma omp parallel for schedule(static) num_threads(settings_.n_threads) reduction(+ : broken)
+  for (std::size_t q = 0; q < n; ++q)
+    {
+      const std::uint32_t i = c.disc_i[q], j = c.disc_j[q];
+      ContactState &state = c.state[q];
+      const double dx = p.disc_x[j] - p.disc_x[i], dy = p.disc_y[j] - p.disc_y[i];
+      const double radius_sum = p.disc_radius[i] + p.disc_radius[j];
+      const double distance2 = dx * dx + dy * dy;
+      if (distance2 >= radius_sum * radius_sum && !state.bonded && !state.touching)
+        {
+          c.force_x[q] = c.force_y[q] = c.torque_i[q] = c.torque_j[q] = 0.0;
+          c.elastic_normal_force[q] = c.friction_work[q] = c.viscous_work[q] = 0.0;
+          continue;
+        }
+      const double distance = std::sqrt(distance2);
+      const Vec2 normal(dx / distance, dy / distance);
+      const Vec2 tangent = perp(normal);
+      const double overlap = radius_sum - distance;
+      const std::uint32_t bi = p.disc_body[i], bj = p.disc_body[j];
+      const Vec2 contact_point = Vec2(p.disc_x[i], p.disc_y[i]) + (p.disc_radius[i] - 0.5 * overlap) * normal;
+      const Vec2 lever_i = contact_point - Vec2(p.x[bi], p.y[bi]);
+      const Vec2 lever_j = contact_point - Vec2(p.x[bj], p.y[bj]);
+      const Vec2 v_i = Vec2(p.vx[bi], p.vy[bi]) + spin_velocity(p.omega[bi], lever_i);
+      const Vec2 v_j = Vec2(p.vx[bj], p.vy[bj]) + spin_velocity(p.omega[bj], lever_j);
+      const Vec2 v_rel = v_j - v_i;
+      const double inverse_mass_sum = p.inverse_mass[bi] + p.inverse_mass[bj];
+      const ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt,
+                                inverse_mass_sum > 0.0 ? 1.0 / inverse_mass_sum : 0.0, dt};
+      const ContactForce f = law.evaluate(k, state);
+      const Vec2 force_on_i = -f.normal_force * normal + f.tangential_force * tangent;
+      c.force_x[q] = force_on_i.x();
+      c.force_y[q] = force_on_i.y();
+      c.torque_i[q] = cross(lever_i, force_on_i);
+      c.torque_j[q] = -cross(lever_j, force_on_i);
+      c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
+      c.friction_work[q] = f.friction_work;
+      c.viscous_work[q] = f.viscous_work;
+      broken += f.bond_broke;
+    }
+  n_broken_bonds_ += broken;
+  if (settings_.track_energy && dt > 0.0)
+    {
+      accumulated_.friction_dissipated += deterministic_sum(c.friction_work, settings_.n_threads);
+      accumulated_.viscous_dissipated += deterministic_sum(c.viscous_work, settings_.n_threads);
+    }
+}
+
+void DemSystem::compute_wall_forces()
+{
+  ParticleSet &p = particles_;
+  const double dt = time_step_;
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    {
+      Wall &wall = walls_[w];
+      WallContacts &c = wall_contacts_[w];
+      Vec2 total = Vec2::Zero();
+      std::size_t n_touching = 0;
+      double friction = 0.0, viscous = 0.0;
+      for (std::size_t q = 0; q < c.disc.size(); ++q)
+        {
+          const std::uint32_t d = c.disc[q];
+          ContactState &state = c.state[q];
+          const Vec2 centre(p.disc_x[d], p.disc_y[d]);
+          Vec2 closest;
+          const double distance = closest_point_on_segment(centre, wall.start, wall.end, closest);
+          const double overlap = p.disc_radius[d] - distance;
+          if (overlap <= 0.0 && !state.bonded && !state.touching)
+            {
+              c.force_x[q] = c.force_y[q] = c.elastic_normal_force[q] = 0.0;
+              c.friction_work[q] = c.viscous_work[q] = 0.0;
+              continue;
+            }
+          const Vec2 normal = distance > 0.0 ? Vec2((closest - centre) / distance) : Vec2(-wall.normal());
+          const Vec2 tangent = perp(normal);
+          const std::uint32_t b = p.disc_body[d];
+          const Vec2 contact_point = centre + (p.disc_radius[d] - 0.5 * overlap) * normal;
+          const Vec2 lever = contact_point - Vec2(p.x[b], p.y[b]);
+          const Vec2 v_disc = Vec2(p.vx[b], p.vy[b]) + spin_velocity(p.omega[b], lever);
+          const Vec2 v_rel = wall.velocity - v_disc;
+          const ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt,
+                                    p.inverse_mass[b] > 0.0 ? p.mass[b] : 0.0, dt};
+          const ContactForce f = wall.law.evaluate(k, state);
+          const Vec2 force = -f.normal_force * normal + f.tangential_force * tangent;
+          c.force_x[q] = force.x();
+          c.force_y[q] = force.y();
+          c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
+          c.friction_work[q] = f.friction_work;
+          c.viscous_work[q] = f.viscous_work;
+          friction += f.friction_work;
+          viscous += f.viscous_work;
+          n_broken_bonds_ += f.bond_broke;
+          p.fx[b] += force.x();
+          p.fy[b] += force.y();
+          p.torque[b] += cross(lever, force);
+          total -= force;
+          n_touching += state.touching;
+        }
+      wall.force_from_particles = total;
+      wall.n_contacts = n_touching;
+      if (settings_.track_energy && dt > 0.0)
+        {
+          accumulated_.friction_dissipated += friction;
+          accumulated_.viscous_dissipated += viscous;
+          // Work of the wall on the particles, trapezoidal in time.
+          accumulated_.boundary_work -= 0.5 * (total + wall_force_previous_[w]).dot(wall.velocity) * dt;
+        }
+      wall_force_previous_[w] = total;
+    }
+}
+
+void DemSystem::gather_forces_and_kick()
+{
+  ParticleSet &p = particles_;
+  const PairContacts &c = pairs_;
+  const std::size_t nb = p.n_bodies();
+  const double gx = settings_.gravity.x(), gy = settings_.gravity.y();
+#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
+  for (std::size_t b = 0; b < nb; ++b)
+    {
+      double fx = p.mass[b] * gx, fy = p.mass[b] * gy, t = 0.0;
+      for (std::uint32_t e = c.body_offset[b]; e < c.body_offset[b + 1]; ++e)
+        {
+          const std::uint32_t entry = c.body_entry[e], q = entry >> 1;
+          if (entry & 1u)
+            {
+              fx -= c.force_x[q];
+              fy -= c.force_y[q];
+              t += c.torque_j[q];
+            }
+          else
+            {
+              fx += c.force_x[q];
+              fy += c.force_y[q];
+              t += c.torque_i[q];
+            }
+        }
+      p.fx[b] = fx;
+      p.fy[b] = fy;
+      p.torque[b] = t;
+    }
+  compute_wall_forces();
+
+  const double half = 0.5 * time_step_, alpha = settings_.local_damping;
+#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
+  for (std::size_t b = 0; b < nb; ++b)
+    {
+      if (p.inverse_mass[b] == 0.0)
+        {
+          damping_fx_[b] = damping_fy_[b] = damping_torque_[b] = body_scratch_[b] = 0.0;
+          continue;
+        }
+      const auto damping = [alpha](double force, double velocity) {
+        return velocity > 0.0 ? -alpha * std::abs(force) : (velocity < 0.0 ? alpha * std::abs(force) : 0.0);
+      };
+      damping_fx_[b] = damping(p.fx[b], p.vx[b]);
+      damping_fy_[b] = damping(p.fy[b], p.vy[b]);
+      damping_torque_[b] = damping(p.torque[b], p.omega[b]);
+      const double vx0 = p.vx[b], vy0 = p.vy[b], w0 = p.omega[b];
+      p.vx[b] += half * (p.fx[b] + damping_fx_[b]) * p.inverse_mass[b];
+      p.vy[b] += half * (p.fy[b] + damping_fy_[b]) * p.inverse_mass[b];
+      p.omega[b] += half * (p.torque[b] + damping_torque_[b]) * p.inverse_inertia[b];
+      body_scratch_[b] = 0.5 * half *
+                         (damping_fx_[b] * (vx0 + p.vx[b]) + damping_fy_[b] * (vy0 + p.vy[b]) +
+                          damping_torque_[b] * (w0 + p.omega[b]));
+    }
+  if (settings_.track_energy && alpha > 0.0)
+    accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
+}
+
+void DemSystem::check_finite() const
+{
+  const ParticleSet &p = particles_;
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    if (!std::isfinite(p.x[b]) || !std::isfinite(p.y[b]) || !std::isfinite(p.vx[b]) ||
+        !std::isfinite(p.vy[b]) || !std::isfinite(p.omega[b]))
+      {
+        std::ostringstream message;
+        message << "DEM: body " << p.body_id[b] << " has a non-finite position or velocity at t = "
+                << time_ << " s (step " << step_count_
+                << "); likely causes: a time step too close to the stable limit, particles created "
+                   "overlapping deeply, or a wall moving through the sample";
+        throw std::runtime_error(message.str());
+      }
+}
+
+EnergyBudget DemSystem::energy() const
+{
+  const ParticleSet &p = particles_;
+  EnergyBudget e = accumulated_;
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    {
+      if (p.inverse_mass[b] == 0.0)
+        continue;
+      e.kinetic += 0.5 * p.mass[b] * (p.vx[b] * p.vx[b] + p.vy[b] * p.vy[b]) +
+                   0.5 * p.inertia[b] * p.omega[b] * p.omega[b];
+      e.gravitational -= p.mass[b] * (settings_.gravity.x() * p.x[b] + settings_.gravity.y() * p.y[b]);
+    }
+  for (std::size_t q = 0; q < pairs_.size(); ++q)
+    if (pairs_.state[q].touching)
+      e.elastic += particle_law_.elastic_energy(pairs_.elastic_normal_force[q], pairs_.state[q].tangential_force);
+  for (std::size_t w = 0; w < walls_.size(); ++w)
+    for (std::size_t q = 0; q < wall_contacts_[w].disc.size(); ++q)
+      if (wall_contacts_[w].state[q].touching)
+        e.elastic += walls_[w].law.elastic_energy(wall_contacts_[w].elastic_normal_force[q],
+                                                  wall_contacts_[w].state[q].tangential_force);
+  return e;
+}
+
+std::size_t DemSystem::n_touching_pairs() const
+{
+  return static_cast<std::size_t>(
+    std::count_if(pairs_.state.begin(), pairs_.state.end(), [](const ContactState &s) { return s.touching; }));
+}
+
+std::size_t DemSystem::n_touching_wall_contacts() const
+{
+  std::size_t n = 0;
+  for (const Wall &w : walls_)
+    n += w.n_contacts;
+  return n;
+}
+} // namespace geohybrid::dem

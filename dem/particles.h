@@ -1,0 +1,63 @@
+#pragma once
+// Plain structure-of-arrays storage for rigid bodies (discs or two-disc clusters) and the discs
+// they are made of. Body b owns discs [first_disc[b], first_disc[b] + n_discs[b]). The arrays are
+// public on purpose: the force loops read them directly; ParticleSet only keeps them consistent.
+#include "conventions.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace geohybrid::dem
+{
+struct ParticleSet
+{
+  // ---- bodies -------------------------------------------------------------------------------
+  std::vector<std::int64_t> body_id;    ///< the user's id (CSV id or generation order)
+  std::vector<double> x, y;             ///< centre of mass [m]
+  std::vector<double> rotation;         ///< angle about +z [rad]
+  std::vector<double> vx, vy;           ///< [m/s]
+  std::vector<double> omega;            ///< angular velocity about +z [rad/s]
+  std::vector<double> fx, fy, torque;   ///< resultant of the last force evaluation [N/m, N]
+  std::vector<double> mass, inertia;    ///< [kg/m], [kg m]
+  std::vector<double> inverse_mass, inverse_inertia; ///< 0 for a fixed body
+  std::vector<std::uint32_t> first_disc, n_discs;
+
+  // ---- discs --------------------------------------------------------------------------------
+  std::vector<std::uint32_t> disc_body;        ///< owning body
+  std::vector<double> disc_radius;             ///< [m]
+  std::vector<double> disc_offset_x, disc_offset_y; ///< centre in the body frame [m]
+  std::vector<double> disc_x, disc_y;          ///< centre in the world frame [m]
+
+  std::size_t n_bodies() const { return x.size(); }
+  std::size_t n_discs_total() const { return disc_radius.size(); }
+
+  /// Adds a single disc of the given density [kg/m^3]; returns the body index.
+  std::size_t add_disc(const Vec2 &centre, double radius, double density, std::int64_t id = -1);
+
+  /// Adds a rigid cluster of two discs (radii r_large and r_small, centres `spacing` apart) whose
+  /// axis makes `angle` with +x; the mass properties subtract the lens where the discs overlap.
+  std::size_t add_two_disc_cluster(const Vec2 &centre_of_mass, double r_large, double r_small,
+                                   double spacing, double angle, double density,
+                                   std::int64_t id = -1);
+
+  /// Makes body b immovable (infinite mass and inertia).
+  void fix_body(std::size_t b);
+
+  /// Recomputes disc world positions from body positions and rotations.
+  void update_disc_positions();
+
+  /// Solid area of body b [m^2 per m]: mass / density is not stored, so this is from geometry.
+  double body_area(std::size_t b) const;
+
+  void reserve(std::size_t n_bodies, std::size_t n_discs);
+};
+
+/// Mass properties of the union of two overlapping discs, per unit density and thickness.
+struct TwoDiscGeometry
+{
+  double area;                 ///< [m^2]
+  double centroid_from_large;  ///< distance from the large disc centre along the axis [m]
+  double polar_moment;         ///< second polar moment of area about the centroid [m^4]
+};
+TwoDiscGeometry two_disc_geometry(double r_large, double r_small, double spacing);
+} // namespace geohybrid::dem

@@ -1,0 +1,47 @@
+#pragma once
+// A rigid straight wall: a segment from `start` to `end` whose active side is on its left
+// (the unit normal perp(end - start) points into the granular sample). A wall has its own
+// contact law, moves at a prescribed velocity or is servo-controlled to a target normal stress,
+// and reports the force the particles exert on it.
+#include "contact_law.h"
+
+#include <string>
+
+namespace geohybrid::dem
+{
+enum class WallControl
+{
+  prescribed_velocity, ///< moves at `velocity`
+  servo_stress         ///< moves along its normal so that its normal stress tends to target_stress
+};
+
+struct WallServo
+{
+  double target_stress = 0.0;  ///< compressive normal stress to hold [Pa]
+  double relaxation    = 0.5;  ///< fraction of the stress error removed per step (PFC's alpha)
+  double max_speed     = 1.0;  ///< cap on the servo speed [m/s]
+};
+
+struct Wall
+{
+  std::string name;
+  Vec2 start, end;
+  LinearContactLaw law;
+  WallControl control = WallControl::prescribed_velocity;
+  Vec2 velocity = Vec2::Zero(); ///< current velocity (prescribed, or set by the servo) [m/s]
+  WallServo servo;
+
+  // Reported after each step.
+  Vec2 force_from_particles = Vec2::Zero(); ///< resultant force the particles apply [N/m]
+  std::size_t n_contacts = 0;
+
+  Wall(std::string name_, const Vec2 &start_, const Vec2 &end_, const LinearContactLaw &law_)
+    : name(std::move(name_)), start(start_), end(end_), law(law_) {}
+
+  double length() const { return (end - start).norm(); }
+  Vec2 normal() const { return perp(end - start).normalized(); }
+  /// Compressive normal stress on the wall: normal force from the particles over its length [Pa].
+  double normal_stress() const { return -force_from_particles.dot(normal()) / length(); }
+  void translate(const Vec2 &d) { start += d; end += d; }
+};
+} // namespace geohybrid::dem

@@ -1,0 +1,10 @@
+# Fails if any source file under DIR includes a deal.II header.
+file(GLOB_RECURSE sources "${DIR}/*.h" "${DIR}/*.cc")
+foreach(f ${sources})
+  file(STRINGS "${f}" hits REGEX "#include *[<\"]deal\\.II/")
+  if(hits)
+    message(FATAL_ERROR "${f} includes deal.II: ${hits}")
+  endif()
+endforeach()
+list(LENGTH sources n)
+message(STATUS "checked ${n} files of ${DIR}: no deal.II include")
