@@ -174,7 +174,7 @@ void DemSystem::kick_and_drift()
     }
   if (settings_.track_energy && settings_.local_damping > 0.0)
     accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
-  p.update_disc_positions();
+  p.update_disc_positions(settings_.n_threads);
 }
 
 void DemSystem::move_walls()

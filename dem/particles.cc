@@ -138,10 +138,10 @@ void ParticleSet::fix_body(std::size_t b)
   vx[b] = vy[b] = omega[b] = 0.0;
 }
 
-void ParticleSet::update_disc_positions()
+void ParticleSet::update_disc_positions(int n_threads)
 {
   const std::size_t nd = disc_radius.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(n_threads)
   for (std::size_t d = 0; d < nd; ++d)
     {
       const std::uint32_t b = disc_body[d];

@@ -43,8 +43,8 @@ struct ParticleSet
   /// Makes body b immovable (infinite mass and inertia).
   void fix_body(std::size_t b);
 
-  /// Recomputes disc world positions from body positions and rotations.
-  void update_disc_positions();
+  /// Recomputes disc world positions from body positions and rotations, on n_threads threads.
+  void update_disc_positions(int n_threads = 1);
 
   /// Solid area of body b [m^2 per m]: mass / density is not stored, so this is from geometry.
   double body_area(std::size_t b) const;

@@ -1,0 +1,346 @@
+// `geohybrid dem`: a scene of discs or two-disc clusters in a box, generated on a loose lattice
+// and deposited under gravity, or read from CSV; any number of extra walls. It writes
+//   time_series.csv      energies, coordination, unbalanced force, wall forces, per output step
+//   particle_history.csv time, id, x, y, rotation, vx, vy, omega of the chosen particles
+//   particles.h5/.xdmf   snapshots for ParaView (positions, radii, velocities, contact forces)
+//   final_particles.csv  the end state in the input CSV format (to reuse a deposited packing)
+//   parameters.prm       the resolved input;  summary.json  written last
+#include "dem_command.h"
+
+#include "contact_parameters.h"
+#include "run_directory.h"
+
+#include "dem/dem_system.h"
+#include "dem/measurements.h"
+#include "dem/packing.h"
+#include "dem/snapshot_writer.h"
+
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace geohybrid::apps
+{
+using dealii::ParameterHandler;
+namespace Patterns = dealii::Patterns;
+
+void declare_dem_parameters(ParameterHandler &prm)
+{
+  prm.declare_entry("output directory", "output/dem", Patterns::Anything(),
+                    "Directory for all results, created if needed, relative to the working directory");
+  prm.declare_entry("threads", "2", Patterns::Integer(1, 256),
+                    "Number of threads; results are identical for any number [-]");
+
+  prm.enter_subsection("Particles");
+  prm.declare_entry("source", "generate", Patterns::Selection("generate|csv"),
+                    "generate: a loose lattice deposited under gravity; csv: read from 'csv file'");
+  prm.declare_entry("csv file", "", Patterns::Anything(),
+                    "Particle CSV (x,y,radius,vx,vy,omega[,cluster_id]), relative to the input file's directory");
+  prm.declare_entry("csv overlap tolerance", "0.01", Patterns::Double(0.0, 1.0),
+                    "Largest overlap allowed between CSV particles, as a fraction of the smaller radius [-]");
+  prm.declare_entry("density", "2650", Patterns::Double(1e-9),
+                    "Solid density of the particles [kg/m^3]");
+  prm.declare_entry("shape", "disc", Patterns::Selection("disc|two-disc cluster"),
+                    "Generated particle shape: a disc, or a rigid cluster of discs of diameters d and ratio*d");
+  prm.declare_entry("number of particles", "10000", Patterns::Integer(1), "Generated particles [-]");
+  prm.declare_entry("minimum radius", "1.5e-3", Patterns::Double(1e-9),
+                    "Smallest radius of a generated (large) disc [m]");
+  prm.declare_entry("maximum radius", "2.5e-3", Patterns::Double(1e-9),
+                    "Largest radius of a generated (large) disc [m]");
+  prm.declare_entry("cluster diameter ratio", "0.9", Patterns::Double(0.1, 1.0),
+                    "Small over large disc diameter in a cluster (0.9 in the reference paper) [-]");
+  prm.declare_entry("cluster centre spacing", "0.5", Patterns::Double(0.01, 0.95),
+                    "Distance between a cluster's disc centres over the large diameter [-]");
+  prm.declare_entry("seed", "1", Patterns::Integer(0), "Seed of the random sizes and orientations [-]");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Box");
+  prm.declare_entry("width", "1.0", Patterns::Double(1e-9), "Inner width between the side walls [m]");
+  prm.declare_entry("height", "1.0", Patterns::Double(1e-9), "Height of the side walls above the floor [m]");
+  prm.declare_entry("top wall", "false", Patterns::Bool(), "Close the box with a fixed top wall [-]");
+  prm.declare_entry("extra walls", "", Patterns::Anything(),
+                    "More walls, separated by ';', each 'x0 y0 x1 y1 vx vy' (active side on the left of "
+                    "start->end, velocity prescribed) [m, m/s]");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Particle contact");
+  declare_contact_parameters(prm, dem::ContactParameters{});
+  prm.leave_subsection();
+  prm.enter_subsection("Wall contact");
+  dem::ContactParameters wall_defaults;
+  wall_defaults.friction_angle_deg = 28.0; // soil/wall friction of the reference paper
+  declare_contact_parameters(prm, wall_defaults);
+  prm.leave_subsection();
+
+  prm.enter_subsection("Simulation");
+  prm.declare_entry("gravity", "9.81", Patterns::Double(0.0), "Gravitational acceleration, along -y [m/s^2]");
+  prm.declare_entry("local damping coefficient", "0.7", Patterns::Double(0.0, 0.99),
+                    "PFC local non-viscous damping alpha; 0 for true dynamics [-]");
+  prm.declare_entry("time step", "0", Patterns::Double(0.0),
+                    "Time step; 0 = safety factor x critical step; a value above the critical step is refused [s]");
+  prm.declare_entry("time step safety factor", "0.5", Patterns::Double(0.01, 1.0),
+                    "Fraction of the critical time step used when 'time step' is 0 [-]");
+  prm.declare_entry("end time", "0.5", Patterns::Double(0.0), "Simulated duration [s]");
+  prm.declare_entry("output interval", "0.005", Patterns::Double(0.0),
+                    "Interval of time_series.csv and particle_history.csv rows [s]");
+  prm.declare_entry("snapshot interval", "0.05", Patterns::Double(0.0),
+                    "Interval of HDF5/XDMF snapshots; 0 = first and last only [s]");
+  prm.declare_entry("history particles", "", Patterns::Anything(),
+                    "Particle ids (comma separated) written to particle_history.csv, 'all', or empty for none");
+  prm.leave_subsection();
+}
+
+namespace
+{
+std::vector<std::vector<double>> parse_walls(const std::string &text)
+{
+  std::vector<std::vector<double>> walls;
+  std::stringstream all(text);
+  std::string one;
+  while (std::getline(all, one, ';'))
+    {
+      if (one.find_first_not_of(" \t") == std::string::npos)
+        continue;
+      std::istringstream fields(one);
+      std::vector<double> v(6);
+      for (double &x : v)
+        if (!(fields >> x))
+          throw std::invalid_argument("parameter 'Box/extra walls': '" + one +
+                                      "' is not 'x0 y0 x1 y1 vx vy'");
+      walls.push_back(v);
+    }
+  return walls;
+}
+
+std::vector<std::size_t> parse_history_ids(const std::string &text, std::size_t n_bodies)
+{
+  std::vector<std::size_t> ids;
+  if (text == "all")
+    {
+      for (std::size_t b = 0; b < n_bodies; ++b)
+        ids.push_back(b);
+      return ids;
+    }
+  for (const std::string &item : dealii::Utilities::split_string_list(text, ','))
+    {
+      if (item.empty())
+        continue;
+      const int id = dealii::Utilities::string_to_int(item);
+      if (id < 0 || static_cast<std::size_t>(id) >= n_bodies)
+        throw std::invalid_argument("parameter 'Simulation/history particles': id " + item +
+                                    " does not exist (there are " + std::to_string(n_bodies) + " particles)");
+      ids.push_back(static_cast<std::size_t>(id));
+    }
+  return ids;
+}
+} // namespace
+
+int run_dem_command(const std::string &input_file)
+{
+  ParameterHandler prm;
+  declare_dem_parameters(prm);
+  parse_input_file(prm, input_file);
+  const std::filesystem::path input_directory = std::filesystem::path(input_file).parent_path();
+  const std::string where = "input file '" + input_file + "'";
+
+  // ---- everything is read and checked before anything is written ----
+  const int n_threads = prm.get_integer("threads");
+  prm.enter_subsection("Box");
+  const double width = prm.get_double("width");
+  const double height = prm.get_double("height");
+  const bool top_wall = prm.get_bool("top wall");
+  const auto extra_walls = parse_walls(prm.get("extra walls"));
+  prm.leave_subsection();
+
+  prm.enter_subsection("Particles");
+  const double density = prm.get_double("density");
+  dem::ParticleSet particles;
+  if (prm.get("source") == "csv")
+    {
+      std::filesystem::path csv = prm.get("csv file");
+      if (csv.empty())
+        throw std::invalid_argument(where + ": 'Particles/source' is csv but 'csv file' is empty");
+      if (csv.is_relative())
+        csv = input_directory / csv;
+      particles = dem::read_particle_csv(csv, density, prm.get_double("csv overlap tolerance"));
+    }
+  else
+    {
+      dem::LooseLatticeSpec spec;
+      spec.n_particles = static_cast<std::size_t>(prm.get_integer("number of particles"));
+      spec.x_min = 0.0;
+      spec.x_max = width;
+      spec.y_min = 0.0;
+      spec.radius_min = prm.get_double("minimum radius");
+      spec.radius_max = prm.get_double("maximum radius");
+      if (spec.radius_max < spec.radius_min)
+        throw std::invalid_argument(where + ": 'Particles/maximum radius' is below 'minimum radius'");
+      spec.density = density;
+      spec.shape = prm.get("shape") == "disc" ? dem::ParticleShape::disc : dem::ParticleShape::two_disc_cluster;
+      spec.cluster_diameter_ratio = prm.get_double("cluster diameter ratio");
+      spec.cluster_spacing = prm.get_double("cluster centre spacing");
+      spec.seed = static_cast<std::uint64_t>(prm.get_integer("seed"));
+      particles = dem::make_loose_lattice(spec);
+    }
+  prm.leave_subsection();
+
+  for (std::size_t b = 0; b < particles.n_bodies(); ++b)
+    if (particles.x[b] < 0.0 || particles.x[b] > width || particles.y[b] < 0.0 ||
+        (top_wall && particles.y[b] > height))
+      throw std::invalid_argument(where + ": particle " + std::to_string(particles.body_id[b]) +
+                                  " lies outside the box ('Box/width', 'Box/height'); enlarge the box or "
+                                  "use fewer particles");
+
+  prm.enter_subsection("Particle contact");
+  const dem::LinearContactLaw particle_law(parse_contact_parameters(prm, where + ", subsection 'Particle contact'"));
+  prm.leave_subsection();
+  prm.enter_subsection("Wall contact");
+  const dem::LinearContactLaw wall_law(parse_contact_parameters(prm, where + ", subsection 'Wall contact'"));
+  prm.leave_subsection();
+
+  prm.enter_subsection("Simulation");
+  dem::DemSettings settings;
+  settings.gravity = dem::Vec2(0.0, -prm.get_double("gravity"));
+  settings.local_damping = prm.get_double("local damping coefficient");
+  settings.time_step = prm.get_double("time step");
+  settings.time_step_safety = prm.get_double("time step safety factor");
+  settings.n_threads = n_threads;
+  const double end_time = prm.get_double("end time");
+  const double output_interval = prm.get_double("output interval");
+  const double snapshot_interval = prm.get_double("snapshot interval");
+  const std::string history_text = prm.get("history particles");
+  prm.leave_subsection();
+
+  dem::DemSystem system = [&] {
+    try
+      {
+        dem::DemSystem s(std::move(particles), particle_law, settings);
+        s.add_wall(dem::Wall("floor", dem::Vec2(width, 0.0), dem::Vec2(0.0, 0.0), wall_law));
+        s.add_wall(dem::Wall("left", dem::Vec2(0.0, 0.0), dem::Vec2(0.0, height), wall_law));
+        s.add_wall(dem::Wall("right", dem::Vec2(width, height), dem::Vec2(width, 0.0), wall_law));
+        if (top_wall)
+          s.add_wall(dem::Wall("top", dem::Vec2(0.0, height), dem::Vec2(width, height), wall_law));
+        for (std::size_t k = 0; k < extra_walls.size(); ++k)
+          {
+            const auto &w = extra_walls[k];
+            dem::Wall wall("extra_" + std::to_string(k), dem::Vec2(w[0], w[1]), dem::Vec2(w[2], w[3]), wall_law);
+            wall.velocity = dem::Vec2(w[4], w[5]);
+            s.add_wall(wall);
+          }
+        return s;
+      }
+    catch (const std::invalid_argument &e)
+      {
+        throw std::invalid_argument(where + ": " + e.what());
+      }
+  }();
+  const std::vector<std::size_t> history = parse_history_ids(history_text, system.particles().n_bodies());
+
+  // ---- run ----
+  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
+  write_resolved_parameters(prm, out);
+  std::ofstream series(out / "time_series.csv");
+  series << std::setprecision(10)
+         << "time,kinetic_energy,gravitational_energy,elastic_energy,friction_dissipated,viscous_dissipated,"
+            "local_damping_dissipated,boundary_work,energy_balance_error,coordination_number,"
+            "unbalanced_force_ratio,n_contacts,broken_bonds";
+  for (const dem::Wall &w : system.walls())
+    series << ",wall_" << w.name << "_fx,wall_" << w.name << "_fy";
+  series << '\n';
+  std::ofstream history_out;
+  if (!history.empty())
+    {
+      history_out.open(out / "particle_history.csv");
+      history_out << std::setprecision(12) << "time,id,x,y,rotation,vx,vy,omega\n";
+    }
+  dem::SnapshotWriter snapshots(out, "particles");
+
+  const double total_energy_start = system.energy().total();
+  const auto write_rows = [&] {
+    const dem::EnergyBudget e = system.energy();
+    const double scale = std::max({std::abs(e.gravitational), e.kinetic + e.elastic, 1e-300});
+    series << system.time() << ',' << e.kinetic << ',' << e.gravitational << ',' << e.elastic << ','
+           << e.friction_dissipated << ',' << e.viscous_dissipated << ',' << e.local_damping_dissipated << ','
+           << e.boundary_work << ',' << (e.total() - total_energy_start) / scale << ','
+           << dem::coordination_number(system) << ',' << dem::unbalanced_force_ratio(system) << ','
+           << system.n_touching_pairs() << ',' << system.n_broken_bonds();
+    for (const dem::Wall &w : system.walls())
+      series << ',' << w.force_from_particles.x() << ',' << w.force_from_particles.y();
+    series << '\n';
+    const dem::ParticleSet &p = system.particles();
+    for (std::size_t b : history)
+      history_out << system.time() << ',' << p.body_id[b] << ',' << p.x[b] << ',' << p.y[b] << ','
+                  << p.rotation[b] << ',' << p.vx[b] << ',' << p.vy[b] << ',' << p.omega[b] << '\n';
+  };
+
+  const auto wall_start = std::chrono::steady_clock::now();
+  const std::uint64_t n_steps = static_cast<std::uint64_t>(std::ceil(end_time / system.time_step() - 1e-9));
+  const std::uint64_t output_every =
+    output_interval > 0.0 ? std::max<std::uint64_t>(1, std::llround(output_interval / system.time_step())) : n_steps + 1;
+  const std::uint64_t snapshot_every =
+    snapshot_interval > 0.0 ? std::max<std::uint64_t>(1, std::llround(snapshot_interval / system.time_step())) : n_steps + 1;
+  std::cout << "geohybrid dem: " << system.particles().n_bodies() << " particles ("
+            << system.particles().n_discs_total() << " discs), time step " << system.time_step()
+            << " s (critical " << system.critical_time_step() << " s), " << n_steps << " steps, "
+            << n_threads << " thread(s)\n";
+
+  write_rows();
+  snapshots.write(system);
+  ProgressReport progress("dem", static_cast<double>(n_steps));
+  for (std::uint64_t k = 1; k <= n_steps; ++k)
+    {
+      system.step();
+      if (k % output_every == 0 || k == n_steps)
+        write_rows();
+      if (k % snapshot_every == 0 || k == n_steps)
+        snapshots.write(system);
+      if (k % 256 == 0)
+        progress.update(static_cast<double>(k));
+    }
+  progress.finish();
+  const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  dem::write_particle_csv(system.particles(), out / "final_particles.csv");
+  series.close();
+  history_out.close();
+  if (!series || (history_out.is_open() && !history_out))
+    throw std::runtime_error("writing the time series in '" + out.string() + "' failed");
+
+  const dem::EnergyBudget e = system.energy();
+  const double height_of_packing = [&] {
+    double top = 0.0;
+    for (std::size_t d = 0; d < system.particles().n_discs_total(); ++d)
+      top = std::max(top, system.particles().disc_y[d] + system.particles().disc_radius[d]);
+    return top;
+  }();
+  const dem::Region bulk{0.1 * width, 0.1 * height_of_packing, 0.9 * width, 0.8 * height_of_packing};
+  const auto stress = dem::love_weber_stress(system, bulk);
+  Summary summary;
+  summary.set("command", "dem");
+  summary.set("n_particles", static_cast<double>(system.particles().n_bodies()));
+  summary.set("n_discs", static_cast<double>(system.particles().n_discs_total()));
+  summary.set("time_step_s", system.time_step());
+  summary.set("critical_time_step_s", system.critical_time_step());
+  summary.set("n_steps", static_cast<double>(n_steps));
+  summary.set("end_time_s", system.time());
+  summary.set("wall_time_s", wall_time);
+  summary.set("threads", n_threads);
+  summary.set("particle_steps_per_second", static_cast<double>(n_steps) * system.particles().n_bodies() / wall_time);
+  summary.set("kinetic_energy_J_per_m", e.kinetic);
+  summary.set("energy_balance_error_relative",
+              (e.total() - total_energy_start) / std::max(std::abs(e.gravitational), 1e-300));
+  summary.set("coordination_number", dem::coordination_number(system));
+  summary.set("unbalanced_force_ratio", dem::unbalanced_force_ratio(system));
+  summary.set("packing_height_m", height_of_packing);
+  summary.set("porosity_bulk", dem::porosity(system, bulk));
+  summary.set("stress_xx_bulk_Pa", stress[0]);
+  summary.set("stress_yy_bulk_Pa", stress[1]);
+  summary.set("stress_xy_bulk_Pa", stress[2]);
+  summary.set("floor_normal_stress_Pa", system.walls()[0].normal_stress());
+  summary.write(out / "summary.json");
+  std::cout << "geohybrid dem: done in " << std::fixed << std::setprecision(1) << wall_time
+            << " s; results in " << out.string() << " (summary.json, time_series.csv, particles.xdmf)\n";
+  return 0;
+}
+} // namespace geohybrid::apps

@@ -1,0 +1,136 @@
+#include "run_directory.h"
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <unistd.h>
+
+namespace geohybrid::apps
+{
+void parse_input_file(dealii::ParameterHandler &prm, const std::string &input_file)
+{
+  if (!std::filesystem::is_regular_file(input_file))
+    throw std::runtime_error("input file '" + input_file + "' does not exist");
+  try
+    {
+      prm.parse_input(input_file);
+    }
+  catch (const dealii::ExceptionBase &e)
+    {
+      std::ostringstream info;
+      e.print_info(info);
+      std::string text = info.str(), line;
+      std::istringstream lines(text);
+      std::string message;
+      while (std::getline(lines, line))
+        {
+          const auto first = line.find_first_not_of(" \t");
+          if (first != std::string::npos)
+            message += (message.empty() ? "" : " ") + line.substr(first);
+        }
+      throw std::runtime_error("input file '" + input_file + "': " + message);
+    }
+}
+
+std::filesystem::path prepare_output_directory(const std::string &directory)
+{
+  if (directory.empty())
+    throw std::invalid_argument("parameter 'output directory' is empty");
+  const std::filesystem::path path(directory);
+  std::error_code error;
+  std::filesystem::create_directories(path, error);
+  if (error)
+    throw std::runtime_error("cannot create output directory '" + directory + "': " + error.message());
+  std::filesystem::remove(path / "summary.json", error);
+  return path;
+}
+
+void write_resolved_parameters(const dealii::ParameterHandler &prm, const std::filesystem::path &directory)
+{
+  std::ofstream out(directory / "parameters.prm");
+  prm.print_parameters(out, dealii::ParameterHandler::OutputStyle::PRM);
+  if (!out)
+    throw std::runtime_error("cannot write " + (directory / "parameters.prm").string());
+}
+
+void Summary::set(const std::string &key, double value)
+{
+  std::ostringstream s;
+  if (std::isfinite(value))
+    s << std::setprecision(12) << value;
+  else
+    s << "null";
+  entries_[key] = s.str();
+}
+
+void Summary::set(const std::string &key, const std::string &value)
+{
+  std::string escaped = "\"";
+  for (char c : value)
+    {
+      if (c == '"' || c == '\\')
+        escaped += '\\';
+      escaped += c;
+    }
+  entries_[key] = escaped + "\"";
+}
+
+void Summary::write(const std::filesystem::path &file) const
+{
+  const std::filesystem::path temporary = file.string() + ".tmp";
+  {
+    std::ofstream out(temporary);
+    out << "{\n";
+    std::size_t k = 0;
+    for (const auto &[key, literal] : entries_)
+      out << "  \"" << key << "\": " << literal << (++k < entries_.size() ? ",\n" : "\n");
+    out << "}\n";
+    if (!out)
+      throw std::runtime_error("cannot write " + temporary.string());
+  }
+  std::filesystem::rename(temporary, file);
+}
+
+ProgressReport::ProgressReport(std::string label, double end)
+  : label_(std::move(label)), end_(end), terminal_(isatty(fileno(stderr)) != 0),
+    start_(std::chrono::steady_clock::now()), last_print_(start_)
+{}
+
+void ProgressReport::update(double now)
+{
+  const int percent = end_ > 0.0 ? static_cast<int>(100.0 * now / end_) : 100;
+  const auto clock = std::chrono::steady_clock::now();
+  const double elapsed = std::chrono::duration<double>(clock - start_).count();
+  const double eta = now > 0.0 ? elapsed * (end_ - now) / now : 0.0;
+  if (terminal_)
+    {
+      if (percent == last_percent_ && std::chrono::duration<double>(clock - last_print_).count() < 0.5)
+        return;
+      const int width = 40, filled = std::min(width, percent * width / 100);
+      std::fprintf(stderr, "\r%s [%s%s] %3d%%  elapsed %.0f s  ETA %.0f s ", label_.c_str(),
+                   std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(), percent,
+                   elapsed, eta);
+    }
+  else
+    {
+      // Plain lines for logs: one every 10 %.
+      if (percent / 10 == last_percent_ / 10)
+        return;
+      std::fprintf(stderr, "%s: %d%% (elapsed %.0f s, ETA %.0f s)\n", label_.c_str(), percent, elapsed, eta);
+    }
+  last_percent_ = percent;
+  last_print_ = clock;
+}
+
+void ProgressReport::finish()
+{
+  update(end_);
+  if (terminal_)
+    std::fprintf(stderr, "\n");
+}
+} // namespace geohybrid::apps

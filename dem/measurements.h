@@ -1,0 +1,35 @@
+#pragma once
+// What a soil mechanician measures on a granular assembly: average stress (Love-Weber),
+// porosity, coordination number and the unbalanced-force ratio.
+#include "dem_system.h"
+
+#include <array>
+
+namespace geohybrid::dem
+{
+/// An axis-aligned measurement rectangle [m].
+struct Region
+{
+  double x_min, y_min, x_max, y_max;
+  double area() const { return (x_max - x_min) * (y_max - y_min); }
+  bool contains(double x, double y) const { return x >= x_min && x <= x_max && y >= y_min && y <= y_max; }
+};
+
+/// Love-Weber average stress over the bodies whose centre of mass lies in the region:
+///   sigma_ab = -(1/A) sum_bodies sum_contacts f_a (x_c - x_body)_b,
+/// written per body so that clusters and walls need no special branch vector. Compression is
+/// negative (continuum mechanics sign), components {xx, yy, xy} [Pa]. The xy entry is the
+/// symmetric part; equilibrium makes the skew part vanish.
+std::array<double, 3> love_weber_stress(const DemSystem &system, const Region &region);
+
+/// 1 - (solid area of the bodies whose centre lies in the region) / (region area). Bodies cut by
+/// the region's edge are counted whole, so use regions much larger than a particle.
+double porosity(const DemSystem &system, const Region &region);
+
+/// Mean number of touching contacts per body, 2 N_c / N_b (wall contacts count once each).
+double coordination_number(const DemSystem &system);
+
+/// PFC's unbalanced-force ratio: mean |resultant force| over movable bodies divided by the mean
+/// contact force magnitude; tends to 0 at static equilibrium.
+double unbalanced_force_ratio(const DemSystem &system);
+} // namespace geohybrid::dem

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The test suite: install what is missing, build, run every test with ctest; then rebuild the
+# DEM library and its tests with AddressSanitizer + UndefinedBehaviorSanitizer and run them.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+"$root/scripts/setup_debian.sh"
+"$root/scripts/build.sh"
+(cd "$root/build" && ctest --output-on-failure -j 2)
+echo "== DEM tests under AddressSanitizer + UndefinedBehaviorSanitizer =="
+GEOHYBRID_BUILD_DIR="$root/build-sanitize" "$root/scripts/build.sh" \
+  -DGEOHYBRID_SANITIZE=ON -DGEOHYBRID_WITH_DEALII=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo
+(cd "$root/build-sanitize" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ctest --output-on-failure -j 2 -L test_dem)
