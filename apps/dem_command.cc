@@ -5,20 +5,25 @@
 //   particles.h5/.xdmf   snapshots for ParaView (positions, radii, velocities, contact forces)
 //   final_particles.csv  the end state in the input CSV format (to reuse a deposited packing)
 //   parameters.prm       the resolved input;  summary.json  written last
+//   checkpoint.h5        the complete state, every 'checkpoint interval' s of wall-clock time and at
+//                        the end; `geohybrid dem FILE --resume` continues from it (see run_dem_command)
 #include "dem_command.h"
 
 #include "contact_parameters.h"
 #include "run_directory.h"
 
+#include "dem/checkpoint.h"
 #include "dem/dem_system.h"
 #include "dem/measurements.h"
 #include "dem/packing.h"
 #include "dem/snapshot_writer.h"
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace geohybrid::apps
@@ -89,6 +94,9 @@ void declare_dem_parameters(ParameterHandler &prm)
                     "Interval of HDF5/XDMF snapshots; 0 = first and last only [s]");
   prm.declare_entry("history particles", "", Patterns::Anything(),
                     "Particle ids (comma separated) written to particle_history.csv, 'all', or empty for none");
+  prm.declare_entry("checkpoint interval", "300", Patterns::Double(0.0),
+                    "Wall-clock time between checkpoints (OUTPUT/checkpoint.h5, also written at the end; "
+                    "continue with 'geohybrid dem FILE --resume'); 0 = never [s]");
   prm.leave_subsection();
 }
 
@@ -137,7 +145,7 @@ std::vector<std::size_t> parse_history_ids(const std::string &text, std::size_t 
 }
 } // namespace
 
-int run_dem_command(const std::string &input_file)
+int run_dem_command(const std::string &input_file, bool resume)
 {
   ParameterHandler prm;
   declare_dem_parameters(prm);
@@ -211,6 +219,7 @@ int run_dem_command(const std::string &input_file)
   const double output_interval = prm.get_double("output interval");
   const double snapshot_interval = prm.get_double("snapshot interval");
   const std::string history_text = prm.get("history particles");
+  const double checkpoint_interval = prm.get_double("checkpoint interval");
   prm.leave_subsection();
 
   dem::DemSystem system = [&] {
@@ -238,26 +247,73 @@ int run_dem_command(const std::string &input_file)
   }();
   const std::vector<std::size_t> history = parse_history_ids(history_text, system.particles().n_bodies());
 
+  // Total energy at t = 0 (the reference of the energy balance), also when resuming: the system
+  // is built from the same input as the run that wrote the checkpoint.
+  const double total_energy_start = system.energy().total();
+  const std::filesystem::path out = prm.get("output directory");
+  if (out.empty())
+    throw std::invalid_argument(where + ": parameter 'output directory' is empty");
+  const std::filesystem::path checkpoint_file = out / "checkpoint.h5";
+  if (resume)
+    {
+      if (!std::filesystem::exists(checkpoint_file))
+        throw std::runtime_error("cannot resume: there is no checkpoint '" + checkpoint_file.string() +
+                                 "' (runs write one every 'Simulation/checkpoint interval' seconds and at their end)");
+      try
+        {
+          system.restore_state(dem::read_checkpoint(checkpoint_file));
+        }
+      catch (const std::invalid_argument &e)
+        {
+          throw std::invalid_argument("checkpoint '" + checkpoint_file.string() + "' does not fit " + where + ": " +
+                                      e.what());
+        }
+    }
+  const std::uint64_t first_step = system.step_count(); // 0, or the checkpoint's step
+  const double resumed_from_time = system.time();
+  const std::uint64_t n_steps = static_cast<std::uint64_t>(std::ceil(end_time / system.time_step() - 1e-9));
+  if (first_step > n_steps)
+    throw std::invalid_argument(where + ": 'Simulation/end time' (" + std::to_string(end_time) +
+                                " s) is before the time of the checkpoint (" + std::to_string(resumed_from_time) +
+                                " s)");
+  const std::uint64_t output_every =
+    output_interval > 0.0 ? std::max<std::uint64_t>(1, std::llround(output_interval / system.time_step())) : n_steps + 1;
+  const std::uint64_t snapshot_every =
+    snapshot_interval > 0.0 ? std::max<std::uint64_t>(1, std::llround(snapshot_interval / system.time_step())) : n_steps + 1;
+  // Output happens at these steps (the last one always); a resumed run continues the files with
+  // the rows and snapshots a straight run would have written up to the checkpoint, dropping an
+  // end-of-run row of the earlier run that is not on this run's grid, and those after the checkpoint.
+  const auto output_at = [&](std::uint64_t k, std::uint64_t every) { return k % every == 0 || k == n_steps; };
+  const auto keep_until = [&](std::uint64_t every) -> std::optional<double> {
+    if (!resume)
+      return std::nullopt;
+    const double half_step = 0.5 * system.time_step(); // rows are written rounded: compare with slack
+    return output_at(first_step, every) ? resumed_from_time + half_step : resumed_from_time - half_step;
+  };
+
   // ---- run ----
-  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
+  prepare_output_directory(out.string());
   write_resolved_parameters(prm, out);
-  std::ofstream series(out / "time_series.csv");
-  series << std::setprecision(10)
-         << "time,kinetic_energy,gravitational_energy,elastic_energy,friction_dissipated,viscous_dissipated,"
-            "local_damping_dissipated,boundary_work,energy_balance_error,coordination_number,"
-            "unbalanced_force_ratio,n_contacts,broken_bonds";
+  if (!resume)
+    std::filesystem::remove(checkpoint_file); // a stale one from an earlier run must not be resumed
+  std::string series_header =
+    "time,kinetic_energy,gravitational_energy,elastic_energy,friction_dissipated,viscous_dissipated,"
+    "local_damping_dissipated,boundary_work,energy_balance_error,coordination_number,"
+    "unbalanced_force_ratio,n_contacts,broken_bonds";
   for (const dem::Wall &w : system.walls())
-    series << ",wall_" << w.name << "_fx,wall_" << w.name << "_fy";
-  series << '\n';
+    series_header += ",wall_" + w.name + "_fx,wall_" + w.name + "_fy";
+  std::ofstream series = open_csv_rows(out / "time_series.csv", series_header, keep_until(output_every));
+  series << std::setprecision(10);
   std::ofstream history_out;
   if (!history.empty())
     {
-      history_out.open(out / "particle_history.csv");
-      history_out << std::setprecision(12) << "time,id,x,y,rotation,vx,vy,omega\n";
+      history_out = open_csv_rows(out / "particle_history.csv", "time,id,x,y,rotation,vx,vy,omega",
+                                  keep_until(output_every));
+      history_out << std::setprecision(12);
     }
-  dem::SnapshotWriter snapshots(out, "particles");
+  dem::SnapshotWriter snapshots = resume ? dem::SnapshotWriter::resume(out, "particles", *keep_until(snapshot_every))
+                                         : dem::SnapshotWriter(out, "particles");
 
-  const double total_energy_start = system.energy().total();
   const auto write_rows = [&] {
     const dem::EnergyBudget e = system.energy();
     const double scale = std::max({std::abs(e.gravitational), e.kinetic + e.elastic, 1e-300});
@@ -274,32 +330,44 @@ int run_dem_command(const std::string &input_file)
       history_out << system.time() << ',' << p.body_id[b] << ',' << p.x[b] << ',' << p.y[b] << ','
                   << p.rotation[b] << ',' << p.vx[b] << ',' << p.vy[b] << ',' << p.omega[b] << '\n';
   };
+  // The rows up to the checkpoint reach the files first, so that a resumed run finds them.
+  const auto save_checkpoint = [&] {
+    series.flush();
+    history_out.flush();
+    dem::write_checkpoint(system.export_state(), checkpoint_file);
+  };
 
   const auto wall_start = std::chrono::steady_clock::now();
-  const std::uint64_t n_steps = static_cast<std::uint64_t>(std::ceil(end_time / system.time_step() - 1e-9));
-  const std::uint64_t output_every =
-    output_interval > 0.0 ? std::max<std::uint64_t>(1, std::llround(output_interval / system.time_step())) : n_steps + 1;
-  const std::uint64_t snapshot_every =
-    snapshot_interval > 0.0 ? std::max<std::uint64_t>(1, std::llround(snapshot_interval / system.time_step())) : n_steps + 1;
   std::cout << "geohybrid dem: " << system.particles().n_bodies() << " particles ("
             << system.particles().n_discs_total() << " discs), time step " << system.time_step()
             << " s (critical " << system.critical_time_step() << " s), " << n_steps << " steps, "
             << n_threads << " thread(s)\n";
+  if (resume)
+    std::cout << "geohybrid dem: resuming from t = " << resumed_from_time << " s (step " << first_step << ") of "
+              << checkpoint_file.string() << '\n';
 
-  write_rows();
-  snapshots.write(system);
-  ProgressReport progress("dem", static_cast<double>(n_steps));
-  for (std::uint64_t k = 1; k <= n_steps; ++k)
+  if (!resume)
+    {
+      write_rows();
+      snapshots.write(system);
+    }
+  WallClockInterval checkpoint_due(checkpoint_interval);
+  ProgressReport progress("dem", static_cast<double>(n_steps - first_step));
+  for (std::uint64_t k = first_step + 1; k <= n_steps; ++k)
     {
       system.step();
-      if (k % output_every == 0 || k == n_steps)
+      if (output_at(k, output_every))
         write_rows();
-      if (k % snapshot_every == 0 || k == n_steps)
+      if (output_at(k, snapshot_every))
         snapshots.write(system);
+      if (checkpoint_due.due())
+        save_checkpoint();
       if (k % 256 == 0)
-        progress.update(static_cast<double>(k));
+        progress.update(static_cast<double>(k - first_step));
     }
   progress.finish();
+  if (checkpoint_interval > 0.0)
+    save_checkpoint();
   const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   dem::write_particle_csv(system.particles(), out / "final_particles.csv");
   series.close();
@@ -326,7 +394,9 @@ int run_dem_command(const std::string &input_file)
   summary.set("end_time_s", system.time());
   summary.set("wall_time_s", wall_time);
   summary.set("threads", n_threads);
-  summary.set("particle_steps_per_second", static_cast<double>(n_steps) * system.particles().n_bodies() / wall_time);
+  summary.set("particle_steps_per_second",
+              static_cast<double>(n_steps - first_step) * system.particles().n_bodies() / wall_time);
+  summary.set("resumed_from_time_s", resume ? resumed_from_time : std::nan("")); // null for a fresh run
   summary.set("kinetic_energy_J_per_m", e.kinetic);
   summary.set("energy_balance_error_relative",
               (e.total() - total_energy_start) / std::max(std::abs(e.gravitational), 1e-300));

@@ -1,6 +1,7 @@
 // geohybrid: one executable, one subcommand per kind of run.
 //
 //   geohybrid dem FILE.prm                 a DEM scene (deposition, impacts, any walls)
+//   geohybrid dem FILE.prm --resume        continue it from its last checkpoint
 //   geohybrid COMMAND --print-parameters   every parameter of COMMAND with default, unit, doc
 //
 // Input files are read with deal.II's ParameterHandler (.prm or .json). Errors in the input stop
@@ -13,6 +14,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <string>
 
 namespace
 {
@@ -20,7 +22,7 @@ struct Command
 {
   const char *summary;
   std::function<void(dealii::ParameterHandler &)> declare;
-  std::function<int(const std::string &)> run;
+  std::function<int(const std::string &, bool)> run; ///< (input file, resume)
 };
 
 const std::map<std::string, Command> &commands()
@@ -35,9 +37,12 @@ const std::map<std::string, Command> &commands()
 void print_usage(std::ostream &out)
 {
   out << "geohybrid: 2D DEM of soil coupled with a deal.II continuum, for geosynthetic anchorages\n\n"
-         "usage: geohybrid COMMAND FILE.prm|FILE.json\n"
+         "usage: geohybrid COMMAND FILE.prm|FILE.json [--resume]\n"
          "       geohybrid COMMAND --print-parameters   (every parameter, default, unit and meaning)\n"
-         "       geohybrid --help\n\ncommands:\n";
+         "       geohybrid --help\n\n"
+         "--resume continues the run of FILE from its last checkpoint, OUTPUT/checkpoint.h5\n"
+         "(written every 'Simulation/checkpoint interval' seconds and at the end); the end time\n"
+         "may have been raised meanwhile.\n\ncommands:\n";
   for (const auto &[name, command] : commands())
     out << "  " << name << std::string(12 - std::min<std::size_t>(11, name.size()), ' ') << command.summary << '\n';
 }
@@ -57,21 +62,41 @@ int main(int argc, char **argv)
       print_usage(std::cerr);
       return 2;
     }
-  if (argc != 3)
+  // The arguments after the command: --print-parameters alone, or one input file and --resume.
+  std::string input_file;
+  bool resume = false, print_parameters = false;
+  for (int k = 2; k < argc; ++k)
     {
-      std::cerr << "geohybrid " << argv[1] << ": expected one input file or --print-parameters\n";
+      const std::string argument = argv[k];
+      if (argument == "--resume" && !resume)
+        resume = true;
+      else if (argument == "--print-parameters" && !print_parameters)
+        print_parameters = true;
+      else if (argument.rfind("--", 0) != 0 && input_file.empty())
+        input_file = argument;
+      else
+        {
+          std::cerr << "geohybrid " << argv[1] << ": unexpected argument '" << argument << "'\n\n";
+          print_usage(std::cerr);
+          return 2;
+        }
+    }
+  if (print_parameters ? (resume || !input_file.empty()) : input_file.empty())
+    {
+      std::cerr << "geohybrid " << argv[1] << ": expected one input file (optionally followed by --resume) or "
+                << "--print-parameters\n";
       return 2;
     }
   try
     {
-      if (!std::strcmp(argv[2], "--print-parameters"))
+      if (print_parameters)
         {
           dealii::ParameterHandler prm;
           found->second.declare(prm);
           prm.print_parameters(std::cout, dealii::ParameterHandler::OutputStyle::PRM);
           return 0;
         }
-      return found->second.run(argv[2]);
+      return found->second.run(input_file, resume);
     }
   catch (const std::exception &e)
     {

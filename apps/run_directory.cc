@@ -2,11 +2,13 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <locale>
 #include <sstream>
 #include <unistd.h>
 
@@ -56,6 +58,88 @@ void write_resolved_parameters(const dealii::ParameterHandler &prm, const std::f
   prm.print_parameters(out, dealii::ParameterHandler::OutputStyle::PRM);
   if (!out)
     throw std::runtime_error("cannot write " + (directory / "parameters.prm").string());
+}
+
+namespace
+{
+std::size_t count_fields(const std::string &line) { return 1 + std::count(line.begin(), line.end(), ','); }
+
+/// The time in the first field of a row, if it is a number.
+std::optional<double> row_time(const std::string &line)
+{
+  std::istringstream field(line.substr(0, line.find(',')));
+  field.imbue(std::locale::classic());
+  double time;
+  if (!(field >> time) || !(field >> std::ws).eof())
+    return std::nullopt;
+  return time;
+}
+} // namespace
+
+std::ofstream open_csv_rows(const std::filesystem::path &file, const std::string &header,
+                            std::optional<double> keep_until_time)
+{
+  const auto fail = [&](const std::string &what) -> void {
+    throw std::runtime_error("CSV file '" + file.string() + "': " + what);
+  };
+  if (keep_until_time && std::filesystem::exists(file))
+    {
+      std::ifstream in(file, std::ios::binary);
+      if (!in)
+        fail("cannot be read to continue the run");
+      std::string line, kept;
+      if (!std::getline(in, line) || line != header)
+        fail("its columns differ from those of this run, so it cannot be continued; move it away to "
+             "start a new one");
+      kept = line + '\n';
+      const std::size_t n_fields = count_fields(header);
+      while (std::getline(in, line) && !in.eof()) // eof after getline: the line had no final newline
+        {
+          const std::optional<double> time = row_time(line);
+          if (count_fields(line) != n_fields || !time || !(*time <= *keep_until_time))
+            break;
+          kept += line + '\n';
+        }
+      in.close();
+      const std::filesystem::path temporary = file.string() + ".tmp";
+      {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        out << kept;
+        out.close();
+        if (!out)
+          fail("cannot write '" + temporary.string() + "'");
+      }
+      std::error_code error;
+      std::filesystem::rename(temporary, file, error);
+      if (error)
+        fail("cannot replace it with '" + temporary.string() + "': " + error.message());
+      std::ofstream out(file, std::ios::app);
+      if (!out)
+        fail("cannot be opened for appending");
+      return out;
+    }
+  std::ofstream out(file, std::ios::trunc);
+  out << header << '\n';
+  if (!out)
+    fail("cannot be written");
+  return out;
+}
+
+WallClockInterval::WallClockInterval(double seconds)
+  : interval_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(std::clamp(seconds, 0.0, 1e9)))),
+    last_(std::chrono::steady_clock::now()), enabled_(seconds > 0.0)
+{}
+
+bool WallClockInterval::due()
+{
+  if (!enabled_)
+    return false;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_ < interval_)
+    return false;
+  last_ = now;
+  return true;
 }
 
 void Summary::set(const std::string &key, double value)

@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <optional>
 #include <string>
 
 namespace dealii
@@ -24,6 +26,32 @@ std::filesystem::path prepare_output_directory(const std::string &directory);
 
 /// Writes every parameter, resolved, as DIRECTORY/parameters.prm.
 void write_resolved_parameters(const dealii::ParameterHandler &prm, const std::filesystem::path &directory);
+
+/// Opens a CSV file of time-ordered rows (first column: time [s]) for writing.
+/// A fresh run (no keep_until_time) creates it holding `header` (given without a newline).
+/// A resumed run keeps the header and the rows whose time is <= *keep_until_time, stopping at the
+/// first row that is later, incomplete (no final newline) or malformed (another number of fields
+/// than the header), rewrites the file with them through a temporary file and a rename, and
+/// opens it for appending; a missing file is created as for a fresh run.
+/// Throws std::runtime_error naming the file if it cannot be read or written, or if its header
+/// is not `header` (the columns changed since the earlier run).
+std::ofstream open_csv_rows(const std::filesystem::path &file, const std::string &header,
+                            std::optional<double> keep_until_time);
+
+/// Says when a wall-clock interval has passed since it last said so (or since construction).
+class WallClockInterval
+{
+public:
+  /// An interval of 0 s (or less) is never due.
+  explicit WallClockInterval(double seconds);
+  /// True at most once per interval; cheap to call every step.
+  bool due();
+
+private:
+  std::chrono::steady_clock::duration interval_;
+  std::chrono::steady_clock::time_point last_;
+  bool enabled_;
+};
 
 /// A flat JSON object of numbers and strings, written through a temporary file and a rename.
 class Summary

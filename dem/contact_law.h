@@ -32,6 +32,7 @@ struct ContactState
   double tangential_force = 0.0; ///< Ft along t, on the "i" side [N/m]
   bool   bonded           = false;
   bool   touching         = false; ///< overlap > 0 (or held by a bond) at the last evaluation
+  double dashpot_force    = 0.0;   ///< dashpot part of Fn at the last evaluation (energy balance) [N/m]
 };
 
 /// The kinematics the law needs, measured by the caller in the contact frame.
@@ -100,6 +101,8 @@ inline ContactForce LinearContactLaw::evaluate(const ContactKinematics &k, Conta
       // friction work so that the energy balance closes), and the history is forgotten.
       if (state.touching)
         f.friction_work = 0.5 * state.tangential_force * state.tangential_force / ks;
+      f.viscous_work         = 0.5 * state.dashpot_force * k.overlap_rate * k.time_step;
+      state.dashpot_force    = 0.0;
       state.tangential_force = 0.0;
       state.touching         = false;
       return f;
@@ -118,6 +121,8 @@ inline ContactForce LinearContactLaw::evaluate(const ContactKinematics &k, Conta
       if (k.overlap <= 0.0)
         {
           f.friction_work        = elastic_energy(f.elastic_normal, state.tangential_force);
+          f.viscous_work         = 0.5 * state.dashpot_force * k.overlap_rate * k.time_step;
+          state.dashpot_force    = 0.0;
           state.tangential_force = 0.0;
           state.touching         = false;
           f.elastic_normal       = 0.0;
@@ -126,7 +131,11 @@ inline ContactForce LinearContactLaw::evaluate(const ContactKinematics &k, Conta
     }
   const double dashpot = 2.0 * damping_ratio_ * std::sqrt(k.effective_mass * kn) * k.overlap_rate;
   f.normal_force       = f.elastic_normal + dashpot;
-  f.viscous_work       = dashpot * k.overlap_rate * k.time_step;
+  // The integrator applies this force in the half kicks on either side of v(t), so its work is
+  // dashpot * rate(t) * dt with rate(t) the mean of the half-step rates: book half now (with
+  // this step's rate) and half at the next evaluation (trapezoidal, as the walls' work).
+  f.viscous_work       = 0.5 * (state.dashpot_force + dashpot) * k.overlap_rate * k.time_step;
+  state.dashpot_force  = dashpot;
 
   // Tangential: incremental spring, capped by the Mohr-Coulomb limit a_s + Fn tan(delta).
   const double trial = state.tangential_force + ks * k.tangential_displacement;
@@ -137,11 +146,14 @@ inline ContactForce LinearContactLaw::evaluate(const ContactKinematics &k, Conta
       state.bonded = false; // shear failure of the bond: pure friction from now on
       f.bond_broke = true;
       limit        = frictional_limit;
+      // The spring energy above the friction limit is released at once (with the slip work
+      // below: 0.5 (trial^2 - limit^2) / ks in all).
+      f.friction_work = 0.5 * (std::abs(trial) - limit) * (std::abs(trial) - limit) / ks;
     }
   if (std::abs(trial) > limit)
     {
       const double capped = std::copysign(limit, trial);
-      f.friction_work     = limit * (std::abs(trial) - limit) / ks;
+      f.friction_work    += limit * (std::abs(trial) - limit) / ks;
       state.tangential_force = capped;
     }
   else

@@ -143,8 +143,12 @@ void NeighbourSearch::rebuild_pairs(const ParticleSet &p, double skin, int n_thr
     }
   pairs.resize_results();
 
-  // Body adjacency, in ascending pair order for every body.
-  const std::size_t nb = p.n_bodies();
+  build_body_adjacency(p, pairs);
+}
+
+void build_body_adjacency(const ParticleSet &p, PairContacts &pairs)
+{
+  const std::size_t nb = p.n_bodies(), n = pairs.size();
   pairs.body_offset.assign(nb + 1, 0);
   for (std::size_t q = 0; q < n; ++q)
     {
@@ -154,11 +158,13 @@ void NeighbourSearch::rebuild_pairs(const ParticleSet &p, double skin, int n_thr
   for (std::size_t b = 0; b < nb; ++b)
     pairs.body_offset[b + 1] += pairs.body_offset[b];
   pairs.body_entry.resize(2 * n);
-  fill_.assign(pairs.body_offset.begin(), pairs.body_offset.end() - 1);
+  // Filling in ascending pair order keeps every body's list in a fixed order.
+  std::vector<std::uint32_t> &next = pairs.adjacency_scratch;
+  next.assign(pairs.body_offset.begin(), pairs.body_offset.end() - 1);
   for (std::size_t q = 0; q < n; ++q)
     {
-      pairs.body_entry[fill_[p.disc_body[pairs.disc_i[q]]]++] = static_cast<std::uint32_t>(2 * q);
-      pairs.body_entry[fill_[p.disc_body[pairs.disc_j[q]]]++] = static_cast<std::uint32_t>(2 * q + 1);
+      pairs.body_entry[next[p.disc_body[pairs.disc_i[q]]]++] = static_cast<std::uint32_t>(2 * q);
+      pairs.body_entry[next[p.disc_body[pairs.disc_j[q]]]++] = static_cast<std::uint32_t>(2 * q + 1);
     }
 }
 

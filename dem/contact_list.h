@@ -29,10 +29,14 @@ struct PairContacts
   // Body -> contacts adjacency (CSR), rebuilt with the list: entry = 2 * pair + (body is j).
   std::vector<std::uint32_t> body_offset;
   std::vector<std::uint32_t> body_entry;
+  std::vector<std::uint32_t> adjacency_scratch; ///< reused by build_body_adjacency()
 
   std::size_t size() const { return disc_i.size(); }
   void resize_results();
 };
+
+/// (Re)builds the body -> contact adjacency of `pairs` from its pair list.
+void build_body_adjacency(const ParticleSet &particles, PairContacts &pairs);
 
 /// Discs near one wall, with their contact history (same role as PairContacts for walls).
 struct WallContacts

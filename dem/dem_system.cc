@@ -9,21 +9,19 @@ namespace geohybrid::dem
 {
 double deterministic_sum(const std::vector<double> &values, int n_threads)
 {
-  constexpr std::size_t block = 4096;
-  const std::size_t n_blocks = (values.size() + block - 1) / block;
-  double partial_small[64];
-  std::vector<double> partial_large;
-  double *partial = partial_small;
-  if (n_blocks > 64)
-    {
-      partial_large.resize(n_blocks);
-      partial = partial_large.data();
-    }
+  // At most 64 blocks whose size depends only on the number of values, never on the threads:
+  // the partial sums and their order are the same on any number of threads, and the partial
+  // sums live on the stack (no allocation in the step loop).
+  constexpr std::size_t max_blocks = 64, min_block = 4096;
+  const std::size_t n = values.size();
+  const std::size_t block = std::max(min_block, (n + max_blocks - 1) / max_blocks);
+  const std::size_t n_blocks = (n + block - 1) / block;
+  double partial[max_blocks];
 #pragma omp parallel for schedule(static) num_threads(n_threads) if (n_blocks > 1)
   for (std::size_t k = 0; k < n_blocks; ++k)
     {
       double s = 0.0;
-      const std::size_t end = std::min(values.size(), (k + 1) * block);
+      const std::size_t end = std::min(n, (k + 1) * block);
       for (std::size_t q = k * block; q < end; ++q)
         s += values[q];
       partial[k] = s;
@@ -109,6 +107,29 @@ void DemSystem::set_time_step(double dt)
       throw std::invalid_argument(message.str());
     }
   time_step_ = dt;
+}
+
+void DemSystem::scale_particle_sizes(double factor)
+{
+  if (!(factor > 0.0))
+    throw std::invalid_argument("scale_particle_sizes: the factor must be positive");
+  double r_max = 0.0;
+  for (double r : particles_.disc_radius)
+    r_max = std::max(r_max, r);
+  particles_.scale_sizes(factor);
+  radius_growth_since_rebuild_ += std::max(0.0, (factor - 1.0) * r_max);
+}
+
+void DemSystem::set_particle_law(const LinearContactLaw &law)
+{
+  const LinearContactLaw previous = particle_law_;
+  particle_law_ = law;
+  if (time_step_ > critical_time_step())
+    {
+      particle_law_ = previous;
+      throw std::invalid_argument("the new contact law makes the time step unstable");
+    }
+  skin_ = std::max(skin_, 1.05 * particle_law_.max_bonded_gap());
 }
 
 void DemSystem::bond_touching_contacts()
@@ -215,7 +236,10 @@ void DemSystem::rebuild_if_needed()
       double wall_move = 0.0;
       for (std::size_t w = 0; w < walls_.size(); ++w)
         wall_move = std::max(wall_move, (walls_[w].start - wall_start_at_rebuild_[w]).norm());
-      rebuild_needed_ = 2.0 * max_move > skin_ || max_move + wall_move > skin_;
+      // Two discs approach by at most 2 (move + radius growth); a disc and a wall by
+      // move + growth + wall move. The skin must cover it.
+      const double growth = radius_growth_since_rebuild_;
+      rebuild_needed_ = 2.0 * (max_move + growth) > skin_ || max_move + growth + wall_move > skin_;
     }
   if (!rebuild_needed_)
     return;
@@ -228,6 +252,7 @@ void DemSystem::rebuild_if_needed()
   for (std::size_t w = 0; w < walls_.size(); ++w)
     wall_start_at_rebuild_[w] = walls_[w].start;
   rebuild_needed_ = false;
+  radius_growth_since_rebuild_ = 0.0;
   ++n_rebuilds_;
 }
 
@@ -445,6 +470,78 @@ EnergyBudget DemSystem::energy() const
         e.elastic += walls_[w].law.elastic_energy(wall_contacts_[w].elastic_normal_force[q],
                                                   wall_contacts_[w].state[q].tangential_force);
   return e;
+}
+
+DemSystemState DemSystem::export_state() const
+{
+  DemSystemState s;
+  s.particles = particles_;
+  s.particle_contact = particle_law_.parameters();
+  s.walls = walls_;
+  s.pairs = pairs_;
+  s.wall_contacts = wall_contacts_;
+  s.wall_force_previous = wall_force_previous_;
+  s.disc_x_at_rebuild = disc_x_at_rebuild_;
+  s.disc_y_at_rebuild = disc_y_at_rebuild_;
+  s.wall_start_at_rebuild = wall_start_at_rebuild_;
+  s.damping_fx = damping_fx_;
+  s.damping_fy = damping_fy_;
+  s.damping_torque = damping_torque_;
+  s.accumulated = accumulated_;
+  s.time_step = time_step_;
+  s.time = time_;
+  s.skin = skin_;
+  s.radius_growth_since_rebuild = radius_growth_since_rebuild_;
+  s.step_count = step_count_;
+  s.n_rebuilds = n_rebuilds_;
+  s.n_broken_bonds = n_broken_bonds_;
+  s.rebuild_needed = rebuild_needed_;
+  return s;
+}
+
+void DemSystem::restore_state(DemSystemState s)
+{
+  const auto fail = [](const std::string &what) {
+    throw std::invalid_argument("restoring a DEM state: " + what);
+  };
+  if (s.particles.n_bodies() != particles_.n_bodies() || s.particles.n_discs_total() != particles_.n_discs_total())
+    fail("the saved state has " + std::to_string(s.particles.n_bodies()) + " bodies and " +
+         std::to_string(s.particles.n_discs_total()) + " discs, this system " +
+         std::to_string(particles_.n_bodies()) + " and " + std::to_string(particles_.n_discs_total()));
+  if (s.walls.size() != walls_.size() || s.wall_contacts.size() != walls_.size())
+    fail("the saved state has " + std::to_string(s.walls.size()) + " walls, this system " +
+         std::to_string(walls_.size()));
+  const std::size_t nb = particles_.n_bodies(), nd = particles_.n_discs_total();
+  if (s.damping_fx.size() != nb || s.damping_fy.size() != nb || s.damping_torque.size() != nb ||
+      (!s.rebuild_needed && (s.disc_x_at_rebuild.size() != nd || s.disc_y_at_rebuild.size() != nd)) ||
+      s.pairs.state.size() != s.pairs.disc_i.size() || s.pairs.disc_j.size() != s.pairs.disc_i.size())
+    fail("inconsistent array sizes");
+  particles_ = std::move(s.particles);
+  particle_law_ = LinearContactLaw(s.particle_contact);
+  walls_ = std::move(s.walls);
+  pairs_ = std::move(s.pairs);
+  wall_contacts_ = std::move(s.wall_contacts);
+  wall_force_previous_ = std::move(s.wall_force_previous);
+  disc_x_at_rebuild_ = std::move(s.disc_x_at_rebuild);
+  disc_y_at_rebuild_ = std::move(s.disc_y_at_rebuild);
+  wall_start_at_rebuild_ = std::move(s.wall_start_at_rebuild);
+  damping_fx_ = std::move(s.damping_fx);
+  damping_fy_ = std::move(s.damping_fy);
+  damping_torque_ = std::move(s.damping_torque);
+  accumulated_ = s.accumulated;
+  skin_ = s.skin;
+  radius_growth_since_rebuild_ = s.radius_growth_since_rebuild;
+  set_time_step(s.time_step);
+  time_ = s.time;
+  step_count_ = s.step_count;
+  n_rebuilds_ = s.n_rebuilds;
+  n_broken_bonds_ = s.n_broken_bonds;
+  rebuild_needed_ = s.rebuild_needed;
+  // The body adjacency is derived from the pair list; result arrays may be absent in a file.
+  if (pairs_.force_x.size() != pairs_.size())
+    pairs_.resize_results();
+  build_body_adjacency(particles_, pairs_);
+  body_scratch_.assign(nb, 0.0);
 }
 
 std::size_t DemSystem::n_touching_pairs() const

@@ -53,6 +53,26 @@ struct EnergyBudget
   }
 };
 
+/// Everything a DemSystem needs beyond its construction inputs to continue a run exactly:
+/// what a checkpoint stores. Particles and walls are complete (positions, velocities, forces).
+struct DemSystemState
+{
+  ParticleSet particles;
+  ContactParameters particle_contact; ///< the particle-particle law in force
+  std::vector<Wall> walls;
+  PairContacts pairs;
+  std::vector<WallContacts> wall_contacts;
+  std::vector<Vec2> wall_force_previous;
+  std::vector<double> disc_x_at_rebuild, disc_y_at_rebuild;
+  std::vector<Vec2> wall_start_at_rebuild;
+  std::vector<double> damping_fx, damping_fy, damping_torque;
+  EnergyBudget accumulated;
+  double time_step = 0.0, time = 0.0, skin = 0.0;
+  double radius_growth_since_rebuild = 0.0;
+  std::uint64_t step_count = 0, n_rebuilds = 0, n_broken_bonds = 0;
+  bool rebuild_needed = true;
+};
+
 class DemSystem
 {
 public:
@@ -74,6 +94,15 @@ public:
   void step();
   void run_steps(std::uint64_t n);
 
+  /// Scales every particle's size by `factor` (radius expansion); the neighbour lists account for
+  /// the growth of the radii.
+  void scale_particle_sizes(double factor);
+  double skin() const { return skin_; }
+
+  /// Replaces the particle-particle law (e.g. REDF lowers the friction while growing radii);
+  /// contact histories are kept. Throws if the current time step becomes unstable.
+  void set_particle_law(const LinearContactLaw &law);
+
   /// Makes every contact that currently touches a bonded contact (used to glue packings).
   void bond_touching_contacts();
 
@@ -92,6 +121,13 @@ public:
   std::uint64_t n_broken_bonds() const { return n_broken_bonds_; }
 
   EnergyBudget energy() const;
+
+  /// The complete state, for checkpoints; restore_state() continues bit for bit.
+  DemSystemState export_state() const;
+  /// Replaces the state by a saved one. Throws std::invalid_argument if it does not fit this
+  /// system (different numbers of bodies, discs or walls, or an unstable time step).
+  void restore_state(DemSystemState state);
+
   /// Number of touching contacts between bodies, and with walls.
   std::size_t n_touching_pairs() const;
   std::size_t n_touching_wall_contacts() const;
@@ -125,6 +161,7 @@ private:
   // Positions at the last rebuild, to decide when the Verlet list is stale.
   std::vector<double> disc_x_at_rebuild_, disc_y_at_rebuild_;
   std::vector<Vec2> wall_start_at_rebuild_;
+  double radius_growth_since_rebuild_ = 0.0;
 
   // Local damping force of the last evaluation (applied in both half kicks), per body.
   std::vector<double> damping_fx_, damping_fy_, damping_torque_;

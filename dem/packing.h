@@ -24,7 +24,7 @@ struct LooseLatticeSpec
   double density = 2650.0;         ///< [kg/m^3]
   ParticleShape shape = ParticleShape::disc;
   double cluster_diameter_ratio = 0.9;   ///< small / large diameter
-  double cluster_spacing = 0.5;          ///< centre spacing / large diameter
+  double cluster_spacing = 0.95;         ///< centre spacing / large diameter; 0.95 = touching
   double gap = 0.1;                      ///< free space between lattice sites / largest extent
   std::uint64_t seed = 1;
 };

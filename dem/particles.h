@@ -40,6 +40,10 @@ struct ParticleSet
                                    double spacing, double angle, double density,
                                    std::int64_t id = -1);
 
+  /// Scales every body's size by `factor` about its centre of mass: radii and disc offsets by
+  /// factor, mass by factor^2, inertia by factor^4 (same density). Used by radius expansion.
+  void scale_sizes(double factor);
+
   /// Makes body b immovable (infinite mass and inertia).
   void fix_body(std::size_t b);
 

@@ -1,6 +1,6 @@
 #include "snapshot_writer.h"
 
-#include <hdf5.h>
+#include "hdf5_handles.h"
 
 #include <cmath>
 #include <cstdint>
@@ -16,169 +16,46 @@ namespace geohybrid::dem
 {
 namespace
 {
-// ---- HDF5 error handling ------------------------------------------------------------------------
+using hdf5::check;
+using hdf5::create_group;
+using hdf5::Handle;
+using hdf5::write_attribute;
+using hdf5::write_dataset;
 
-/// Turns off HDF5's printing of its error stack for the lifetime of the guard (the message goes
-/// into the exception instead) and restores the previous handler afterwards.
-class SilenceHdf5Errors
-{
-public:
-  SilenceHdf5Errors()
-  {
-    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~SilenceHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-  SilenceHdf5Errors(const SilenceHdf5Errors &) = delete;
-  SilenceHdf5Errors &operator=(const SilenceHdf5Errors &) = delete;
-
-private:
-  H5E_auto2_t function_ = nullptr;
-  void *data_ = nullptr;
-};
-
-herr_t collect_error(unsigned n, const H5E_error2_t *error, void *client_data)
-{
-  auto *text = static_cast<std::string *>(client_data);
-  if (error->desc && *error->desc)
-    {
-      if (!text->empty())
-        *text += "; ";
-      for (const char *c = error->desc; *c; ++c)
-        *text += (*c == '\n' ? ' ' : *c);
-      if (error->func_name)
-        *text += std::string(" (") + error->func_name + ")";
-    }
-  return n < 1 ? 0 : 1; // the two innermost entries say what went wrong
-}
-
-/// The innermost messages of the current HDF5 error stack.
-std::string hdf5_error_text()
-{
-  std::string text;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, collect_error, &text);
-  return text.empty() ? std::string("unknown HDF5 error") : text;
-}
+/// How failures name the file: "DEM snapshot file '...'".
+std::string describe(const std::filesystem::path &file) { return "DEM snapshot file '" + file.string() + "'"; }
 
 [[noreturn]] void fail(const std::filesystem::path &file, const std::string &what)
 {
-  throw std::runtime_error("DEM snapshot file '" + file.string() + "': " + what);
-}
-
-/// An HDF5 identifier that is closed when it goes out of scope.
-class Handle
-{
-public:
-  using Closer = herr_t (*)(hid_t);
-  Handle(hid_t id, Closer closer, const std::filesystem::path &file, const std::string &what)
-    : id_(id), closer_(closer)
-  {
-    if (id_ < 0)
-      fail(file, what + " failed: " + hdf5_error_text());
-  }
-  ~Handle()
-  {
-    if (id_ >= 0)
-      closer_(id_);
-  }
-  Handle(Handle &&other) noexcept : id_(std::exchange(other.id_, -1)), closer_(other.closer_) {}
-  Handle(const Handle &) = delete;
-  Handle &operator=(const Handle &) = delete;
-  Handle &operator=(Handle &&) = delete;
-  hid_t get() const { return id_; }
-
-  /// Closes now, reporting a failure (H5Fclose is where buffered data reach the disk).
-  void close(const std::filesystem::path &file, const std::string &what)
-  {
-    const hid_t id = id_;
-    id_ = -1;
-    if (closer_(id) < 0)
-      fail(file, what + " failed: " + hdf5_error_text());
-  }
-
-private:
-  hid_t id_;
-  Closer closer_;
-};
-
-void check(herr_t status, const std::filesystem::path &file, const std::string &what)
-{
-  if (status < 0)
-    fail(file, what + " failed: " + hdf5_error_text());
-}
-
-/// File access properties: strong close, and no file locking where the library has it, so that a
-/// reader holding the file open for a moment does not make a long run fail.
-Handle file_access(const std::filesystem::path &file)
-{
-  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, file, "creating file access properties");
-  check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), file, "setting the close degree");
-#if H5_VERSION_GE(1, 10, 7)
-  check(H5Pset_file_locking(fapl.get(), 0, 1), file, "disabling file locking");
-#endif
-  return fapl;
-}
-
-/// Writes a dataset of the given shape (a first dimension of 0 gives an empty dataset).
-void write_dataset(hid_t parent, const char *name, hid_t file_type, hid_t memory_type,
-                   const std::vector<hsize_t> &dims, const void *data,
-                   const std::filesystem::path &file)
-{
-  const std::string what = std::string("dataset '") + name + "'";
-  Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, file,
-               "creating the dataspace of " + what);
-  Handle set(H5Dcreate2(parent, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-             H5Dclose, file, "creating " + what);
-  hsize_t n = 1;
-  for (hsize_t d : dims)
-    n *= d;
-  if (n > 0)
-    check(H5Dwrite(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), file, "writing " + what);
+  hdf5::fail(describe(file), what);
 }
 
 void write_doubles(hid_t parent, const char *name, const std::vector<double> &v, hsize_t columns,
-                   const std::filesystem::path &file)
+                   const std::string &where)
 {
   std::vector<hsize_t> dims{v.size() / columns};
   if (columns > 1)
     dims.push_back(columns);
-  write_dataset(parent, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, v.data(), file);
+  write_dataset(parent, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, dims, v.data(), where);
 }
 
 void write_int64s(hid_t parent, const char *name, const std::vector<std::int64_t> &v, hsize_t columns,
-                  const std::filesystem::path &file)
+                  const std::string &where)
 {
   std::vector<hsize_t> dims{v.size() / columns};
   if (columns > 1)
     dims.push_back(columns);
-  write_dataset(parent, name, H5T_STD_I64LE, H5T_NATIVE_INT64, dims, v.data(), file);
+  write_dataset(parent, name, H5T_STD_I64LE, H5T_NATIVE_INT64, dims, v.data(), where);
 }
 
-void write_int32s(hid_t parent, const char *name, const std::vector<std::int32_t> &v,
-                  const std::filesystem::path &file)
+void write_int32s(hid_t parent, const char *name, const std::vector<std::int32_t> &v, const std::string &where)
 {
-  write_dataset(parent, name, H5T_STD_I32LE, H5T_NATIVE_INT32, {v.size()}, v.data(), file);
+  write_dataset(parent, name, H5T_STD_I32LE, H5T_NATIVE_INT32, {v.size()}, v.data(), where);
 }
 
-void write_attribute(hid_t parent, const char *name, hid_t file_type, hid_t memory_type, const void *value,
-                     const std::filesystem::path &file)
+void write_count(hid_t parent, const char *name, std::uint64_t value, const std::string &where)
 {
-  const std::string what = std::string("attribute '") + name + "'";
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose, file, "creating the dataspace of " + what);
-  Handle attribute(H5Acreate2(parent, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-                   file, "creating " + what);
-  check(H5Awrite(attribute.get(), memory_type, value), file, "writing " + what);
-}
-
-void write_count(hid_t parent, const char *name, std::uint64_t value, const std::filesystem::path &file)
-{
-  write_attribute(parent, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, &value, file);
-}
-
-Handle create_group(hid_t parent, const std::string &name, const std::filesystem::path &file)
-{
-  return Handle(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, file,
-                "creating group '" + name + "'");
+  write_attribute(parent, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, &value, where);
 }
 
 // ---- data of one snapshot -----------------------------------------------------------------------
@@ -251,14 +128,14 @@ ContactLines wall_lines(const DemSystem &system)
   return lines;
 }
 
-void write_lines(hid_t group, const ContactLines &lines, const std::filesystem::path &file)
+void write_lines(hid_t group, const ContactLines &lines, const std::string &where)
 {
-  write_doubles(group, "points", lines.points, 3, file);
-  write_int64s(group, "connectivity", lines.connectivity, 2, file);
-  write_doubles(group, "normal_force", lines.normal_force, 1, file);
-  write_doubles(group, "tangential_force", lines.tangential_force, 1, file);
-  write_doubles(group, "force_magnitude", lines.force_magnitude, 1, file);
-  write_int32s(group, "bonded", lines.bonded, file);
+  write_doubles(group, "points", lines.points, 3, where);
+  write_int64s(group, "connectivity", lines.connectivity, 2, where);
+  write_doubles(group, "normal_force", lines.normal_force, 1, where);
+  write_doubles(group, "tangential_force", lines.tangential_force, 1, where);
+  write_doubles(group, "force_magnitude", lines.force_magnitude, 1, where);
+  write_int32s(group, "bonded", lines.bonded, where);
 }
 
 // ---- XDMF text ----------------------------------------------------------------------------------
@@ -343,9 +220,48 @@ std::string snapshot_name(std::size_t index)
   std::snprintf(name, sizeof(name), "snapshot_%06zu", index);
   return name;
 }
+
+/// The <Grid> of one snapshot in the .xdmf; everything it needs is in the snapshot's attributes.
+std::string xdmf_entry(const std::string &h5_name, const std::string &name, double time, std::size_t n_discs,
+                       std::size_t n_contacts, std::size_t n_wall_contacts)
+{
+  std::ostringstream out;
+  out.imbue(std::locale::classic());
+  out.precision(17);
+  XdmfGridWriter grid{out, xml_escape(h5_name) + ":/" + name + "/"};
+  out << "      <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+      << "        <Time Value=\"" << time << "\"/>\n";
+  // ParaView does not read empty grids: leave them out.
+  if (n_discs > 0)
+    grid.particles(n_discs);
+  if (n_contacts > 0)
+    grid.lines("contacts", n_contacts, false);
+  if (n_wall_contacts > 0)
+    grid.lines("wall_contacts", n_wall_contacts, true);
+  out << "      </Grid>\n";
+  return out.str();
+}
+
+/// True if `path` (relative to `parent`, components separated by '/') exists, checking each
+/// component in turn (H5Lexists fails on a missing intermediate group).
+bool link_exists(hid_t parent, const std::string &path)
+{
+  for (std::size_t end = path.find('/');; end = path.find('/', end + 1))
+    {
+      const std::string prefix = path.substr(0, end);
+      if (H5Lexists(parent, prefix.c_str(), H5P_DEFAULT) <= 0)
+        return false;
+      if (end == std::string::npos)
+        return true;
+    }
+}
 } // namespace
 
 SnapshotWriter::SnapshotWriter(const std::filesystem::path &directory, const std::string &basename)
+  : SnapshotWriter(directory, basename, true)
+{}
+
+SnapshotWriter::SnapshotWriter(const std::filesystem::path &directory, const std::string &basename, bool create)
   : h5_path_(directory / (basename + ".h5")), xdmf_path_(directory / (basename + ".xdmf")),
     h5_name_(basename + ".h5")
 {
@@ -356,13 +272,79 @@ SnapshotWriter::SnapshotWriter(const std::filesystem::path &directory, const std
     std::filesystem::create_directories(directory, error);
   if (error)
     fail(h5_path_, "cannot create directory '" + directory.string() + "': " + error.message());
+  if (create)
+    create_empty_files();
+}
 
-  SilenceHdf5Errors silence;
-  Handle fapl = file_access(h5_path_);
-  Handle file(H5Fcreate(h5_path_.string().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose,
-              h5_path_, "creating the file");
-  file.close(h5_path_, "closing the file");
+void SnapshotWriter::create_empty_files()
+{
+  const std::string where = describe(h5_path_);
+  hdf5::SilenceErrors silence;
+  Handle fapl = hdf5::file_access(where);
+  Handle file(H5Fcreate(h5_path_.string().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose, where,
+              "creating the file");
+  file.close(where, "closing the file");
+  xdmf_entries_.clear();
   write_xdmf();
+}
+
+SnapshotWriter SnapshotWriter::resume(const std::filesystem::path &directory, const std::string &basename,
+                                      double keep_until_time)
+{
+  SnapshotWriter writer(directory, basename, false);
+  std::error_code error;
+  if (!std::filesystem::exists(writer.h5_path_, error))
+    {
+      writer.create_empty_files();
+      return writer;
+    }
+  const std::string where = describe(writer.h5_path_);
+  {
+    hdf5::SilenceErrors silence;
+    Handle fapl = hdf5::file_access(where);
+    const hid_t id = H5Fopen(writer.h5_path_.string().c_str(), H5F_ACC_RDWR, fapl.get());
+    if (id < 0)
+      fail(writer.h5_path_, "cannot reopen it to continue the run (" + hdf5::error_text() +
+                              "); move it away to start a new snapshot file from the resumed time on");
+    Handle file(id, H5Fclose, where, "opening the file");
+    bool keeping = true;
+    for (std::size_t index = 0;; ++index)
+      {
+        const std::string name = snapshot_name(index);
+        if (H5Lexists(file.get(), name.c_str(), H5P_DEFAULT) <= 0)
+          break;
+        if (keeping)
+          {
+            Handle group = hdf5::open_group(file.get(), name, where);
+            double time = 0.0;
+            std::uint64_t n_discs = 0, n_contacts = 0, n_wall_contacts = 0;
+            // A snapshot is complete when its attributes and last dataset are there.
+            const bool complete = H5Aexists(group.get(), "time") > 0 && H5Aexists(group.get(), "n_discs") > 0 &&
+                                  H5Aexists(group.get(), "n_contacts") > 0 &&
+                                  H5Aexists(group.get(), "n_wall_contacts") > 0 &&
+                                  link_exists(group.get(), "wall_contacts/wall_index");
+            if (complete)
+              {
+                hdf5::read_attribute(group.get(), "time", H5T_NATIVE_DOUBLE, &time, where);
+                hdf5::read_attribute(group.get(), "n_discs", H5T_NATIVE_UINT64, &n_discs, where);
+                hdf5::read_attribute(group.get(), "n_contacts", H5T_NATIVE_UINT64, &n_contacts, where);
+                hdf5::read_attribute(group.get(), "n_wall_contacts", H5T_NATIVE_UINT64, &n_wall_contacts, where);
+              }
+            keeping = complete && time <= keep_until_time;
+            if (keeping)
+              {
+                writer.xdmf_entries_.push_back(xdmf_entry(writer.h5_name_, name, time, n_discs, n_contacts,
+                                                          n_wall_contacts));
+                continue;
+              }
+          }
+        // Snapshots are in time order: this one and all later ones go.
+        check(H5Ldelete(file.get(), name.c_str(), H5P_DEFAULT), where, "removing " + name);
+      }
+    file.close(where, "closing the file");
+  }
+  writer.write_xdmf();
+  return writer;
 }
 
 void SnapshotWriter::write(const DemSystem &system)
@@ -392,60 +374,47 @@ void SnapshotWriter::write(const DemSystem &system)
   const ContactLines walls = wall_lines(system);
 
   const std::string name = snapshot_name(n_snapshots());
+  const std::string where = describe(h5_path_);
   {
-    SilenceHdf5Errors silence;
-    Handle fapl = file_access(h5_path_);
-    Handle file(H5Fopen(h5_path_.string().c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose, h5_path_,
+    hdf5::SilenceErrors silence;
+    Handle fapl = hdf5::file_access(where);
+    Handle file(H5Fopen(h5_path_.string().c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose, where,
                 "opening the file");
     // A snapshot that failed half-way earlier may have left its group behind: replace it.
     if (H5Lexists(file.get(), name.c_str(), H5P_DEFAULT) > 0)
-      check(H5Ldelete(file.get(), name.c_str(), H5P_DEFAULT), h5_path_, "removing the incomplete group " + name);
+      check(H5Ldelete(file.get(), name.c_str(), H5P_DEFAULT), where, "removing the incomplete group " + name);
     {
-      Handle snapshot = create_group(file.get(), name, h5_path_);
+      Handle snapshot = create_group(file.get(), name, where);
       const double time = system.time();
-      write_attribute(snapshot.get(), "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &time, h5_path_);
-      write_count(snapshot.get(), "step", system.step_count(), h5_path_);
-      write_count(snapshot.get(), "n_discs", n, h5_path_);
-      write_count(snapshot.get(), "n_bodies", p.n_bodies(), h5_path_);
-      write_count(snapshot.get(), "n_contacts", pairs.size(), h5_path_);
-      write_count(snapshot.get(), "n_wall_contacts", walls.size(), h5_path_);
+      write_attribute(snapshot.get(), "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &time, where);
+      write_count(snapshot.get(), "step", system.step_count(), where);
+      write_count(snapshot.get(), "n_discs", n, where);
+      write_count(snapshot.get(), "n_bodies", p.n_bodies(), where);
+      write_count(snapshot.get(), "n_contacts", pairs.size(), where);
+      write_count(snapshot.get(), "n_wall_contacts", walls.size(), where);
       {
-        Handle g = create_group(snapshot.get(), "particles", h5_path_);
-        write_doubles(g.get(), "position", position, 3, h5_path_);
-        write_int64s(g.get(), "connectivity", connectivity, 1, h5_path_);
-        write_doubles(g.get(), "radius", p.disc_radius, 1, h5_path_);
-        write_doubles(g.get(), "velocity", velocity, 3, h5_path_);
-        write_int64s(g.get(), "cluster_id", cluster_id, 1, h5_path_);
-        write_doubles(g.get(), "rotation", rotation, 1, h5_path_);
+        Handle g = create_group(snapshot.get(), "particles", where);
+        write_doubles(g.get(), "position", position, 3, where);
+        write_int64s(g.get(), "connectivity", connectivity, 1, where);
+        write_doubles(g.get(), "radius", p.disc_radius, 1, where);
+        write_doubles(g.get(), "velocity", velocity, 3, where);
+        write_int64s(g.get(), "cluster_id", cluster_id, 1, where);
+        write_doubles(g.get(), "rotation", rotation, 1, where);
       }
       {
-        Handle g = create_group(snapshot.get(), "contacts", h5_path_);
-        write_lines(g.get(), pairs, h5_path_);
+        Handle g = create_group(snapshot.get(), "contacts", where);
+        write_lines(g.get(), pairs, where);
       }
       {
-        Handle g = create_group(snapshot.get(), "wall_contacts", h5_path_);
-        write_lines(g.get(), walls, h5_path_);
-        write_int32s(g.get(), "wall_index", walls.wall_index, h5_path_);
+        Handle g = create_group(snapshot.get(), "wall_contacts", where);
+        write_lines(g.get(), walls, where);
+        write_int32s(g.get(), "wall_index", walls.wall_index, where);
       }
     }
-    file.close(h5_path_, "closing the file");
+    file.close(where, "closing the file");
   }
 
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out.precision(17);
-  XdmfGridWriter grid{out, xml_escape(h5_name_) + ":/" + name + "/"};
-  out << "      <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
-      << "        <Time Value=\"" << system.time() << "\"/>\n";
-  // ParaView does not read empty grids: leave them out.
-  if (n > 0)
-    grid.particles(n);
-  if (pairs.size() > 0)
-    grid.lines("contacts", pairs.size(), false);
-  if (walls.size() > 0)
-    grid.lines("wall_contacts", walls.size(), true);
-  out << "      </Grid>\n";
-  xdmf_entries_.push_back(out.str());
+  xdmf_entries_.push_back(xdmf_entry(h5_name_, name, system.time(), n, pairs.size(), walls.size()));
   try
     {
       write_xdmf();

@@ -44,6 +44,16 @@ public:
   /// needed. Throws std::runtime_error naming the file if it cannot.
   SnapshotWriter(const std::filesystem::path &directory, const std::string &basename = "particles");
 
+  /// Continues the files of an earlier run (resuming from a checkpoint): reopens
+  /// DIRECTORY/BASENAME.h5, keeps its snapshots in order while they are complete and their time
+  /// is <= keep_until_time, removes the first one that is not and all after it (HDF5 does not give
+  /// their space back; h5repack does), and rewrites the .xdmf to list the kept ones exactly as
+  /// write() listed them; write() then appends after them. A missing .h5 is
+  /// created empty, as by the constructor. Throws std::runtime_error naming the file if it exists
+  /// but cannot be reopened (e.g. damaged by a crash while a snapshot was written).
+  static SnapshotWriter resume(const std::filesystem::path &directory, const std::string &basename,
+                               double keep_until_time);
+
   /// Appends one snapshot of the system at its current time and rewrites the .xdmf so that it is
   /// always valid (ParaView can open it while the run goes on). Throws std::runtime_error naming
   /// the file on failure.
@@ -55,6 +65,8 @@ public:
   const std::filesystem::path &xdmf_path() const { return xdmf_path_; }
 
 private:
+  SnapshotWriter(const std::filesystem::path &directory, const std::string &basename, bool create);
+  void create_empty_files();
   void write_xdmf() const;
 
   std::filesystem::path h5_path_, xdmf_path_;

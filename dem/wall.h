@@ -30,6 +30,9 @@ struct Wall
   WallControl control = WallControl::prescribed_velocity;
   Vec2 velocity = Vec2::Zero(); ///< current velocity (prescribed, or set by the servo) [m/s]
   WallServo servo;
+  /// Length over which the wall's normal force is spread to give its stress; 0 = the segment's
+  /// own length. Walls of a box overhang its corners, so their loaded length is the box side.
+  double loaded_length = 0.0;
 
   // Reported after each step.
   Vec2 force_from_particles = Vec2::Zero(); ///< resultant force the particles apply [N/m]
@@ -40,8 +43,12 @@ struct Wall
 
   double length() const { return (end - start).norm(); }
   Vec2 normal() const { return perp(end - start).normalized(); }
-  /// Compressive normal stress on the wall: normal force from the particles over its length [Pa].
-  double normal_stress() const { return -force_from_particles.dot(normal()) / length(); }
+  /// Compressive normal stress on the wall: normal force from the particles over its loaded
+  /// length [Pa].
+  double normal_stress() const
+  {
+    return -force_from_particles.dot(normal()) / (loaded_length > 0.0 ? loaded_length : length());
+  }
   void translate(const Vec2 &d) { start += d; end += d; }
 };
 } // namespace geohybrid::dem

@@ -43,17 +43,34 @@ protected:
   }
 
   /// Runs the command and returns the error message (empty if it succeeded).
-  static std::string error_of(const std::string &file)
+  static std::string error_of(const std::string &file, bool resume = false)
   {
     try
       {
-        geohybrid::apps::run_dem_command(file);
+        geohybrid::apps::run_dem_command(file, resume);
       }
     catch (const std::exception &e)
       {
         return e.what();
       }
     return "";
+  }
+
+  static std::string contents(const fs::path &file)
+  {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+
+  static std::size_t count_lines(const fs::path &file)
+  {
+    std::ifstream in(file);
+    std::size_t lines = 0;
+    for (std::string line; std::getline(in, line);)
+      ++lines;
+    return lines;
   }
 
   fs::path directory_;
@@ -148,4 +165,57 @@ TEST_F(DemCommand, CsvImpactIsScriptable)
   const auto p = geohybrid::dem::read_particle_csv(directory_ / "out" / "final_particles.csv", 2650.0, 0.5);
   EXPECT_NEAR(p.vx[0], -0.2, 2e-3);
   EXPECT_NEAR(p.vx[1], 0.2, 2e-3);
+}
+
+// A run stopped part-way (end time 12.3 ms, off the output and snapshot intervals) and continued
+// with --resume to the full end time (20 ms) ends exactly where the straight run ends, and its
+// output files are those of the straight run: the rows after the checkpoint that a crashed run may
+// leave (simulated by a later row and a half-written one) and the earlier run's off-interval
+// end-of-run row and snapshot are dropped.
+TEST_F(DemCommand, ResumedRunMatchesStraightRun)
+{
+  const fs::path straight = directory_ / "straight", split = directory_ / "out";
+  ASSERT_EQ(error_of(input("set output directory = " + straight.string() + "\n", "straight.prm")), "");
+  ASSERT_EQ(error_of(input("subsection Simulation\n  set end time = 0.0123\nend\n", "part.prm")), "");
+  ASSERT_TRUE(fs::exists(split / "checkpoint.h5"));
+  EXPECT_FALSE(fs::exists(split / "checkpoint.h5.tmp"));
+  EXPECT_NE(contents(split / "summary.json").find("\"resumed_from_time_s\": null"), std::string::npos);
+  const std::size_t part_rows = count_lines(split / "time_series.csv");
+  {
+    std::ofstream later(split / "time_series.csv", std::ios::app);
+    later << "0.015" << std::string(12, ',') << std::string(2 * 3, ',') << "\n0.016,1,2";
+  }
+
+  ASSERT_EQ(error_of(input("", "full.prm"), true), "");
+  for (const char *name : {"final_particles.csv", "time_series.csv", "particle_history.csv", "particles.xdmf"})
+    EXPECT_EQ(contents(split / name), contents(straight / name)) << name;
+  EXPECT_EQ(count_lines(split / "time_series.csv"), count_lines(straight / "time_series.csv"));
+  EXPECT_GT(count_lines(split / "time_series.csv"), part_rows);
+  const std::string summary = contents(split / "summary.json");
+  EXPECT_NE(summary.find("\"resumed_from_time_s\": 0.0123"), std::string::npos) << summary;
+  EXPECT_EQ(contents(split / "summary.json").find("\"end_time_s\""),
+            contents(straight / "summary.json").find("\"end_time_s\""));
+}
+
+TEST_F(DemCommand, ResumeWithoutCheckpointRefused)
+{
+  std::string message = error_of(input(""), true);
+  EXPECT_NE(message.find((directory_ / "out" / "checkpoint.h5").string()), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(directory_ / "out"));
+  // 'checkpoint interval = 0' writes none, and removes a stale one from an earlier run.
+  ASSERT_EQ(error_of(input("subsection Simulation\n  set end time = 0.002\nend\n")), "");
+  ASSERT_TRUE(fs::exists(directory_ / "out" / "checkpoint.h5"));
+  ASSERT_EQ(error_of(input("subsection Simulation\n  set end time = 0.002\n  set checkpoint interval = 0\nend\n")),
+            "");
+  EXPECT_FALSE(fs::exists(directory_ / "out" / "checkpoint.h5"));
+  message = error_of(input(""), true);
+  EXPECT_NE(message.find("checkpoint.h5"), std::string::npos) << message;
+}
+
+TEST_F(DemCommand, ResumeBeforeCheckpointTimeRefused)
+{
+  ASSERT_EQ(error_of(input("subsection Simulation\n  set end time = 0.004\nend\n")), "");
+  const std::string message = error_of(input("subsection Simulation\n  set end time = 0.002\nend\n"), true);
+  EXPECT_NE(message.find("end time"), std::string::npos) << message;
+  EXPECT_NE(message.find("checkpoint"), std::string::npos) << message;
 }

@@ -405,3 +405,62 @@ TEST(SnapshotWriter, ErrorNamesTheFile)
       EXPECT_NE(std::string(e.what()).find("particles.h5"), std::string::npos) << e.what();
     }
 }
+
+// Continuing the files of an earlier run: the snapshots up to the given time stay, later ones go,
+// the .xdmf is the one the earlier run wrote for the kept ones, and new snapshots follow them.
+TEST(SnapshotWriter, ResumeKeepsEarlierSnapshots)
+{
+  ParticleSet p;
+  p.add_disc(Vec2(0.0, 0.0), 0.01, 2650.0);
+  p.add_disc(Vec2(0.0199, 0.0), 0.01, 2650.0);
+  DemSystem system(p, LinearContactLaw(soft_law()), quiet_settings());
+  TemporaryDirectory directory;
+  std::vector<Expected> expected;
+  std::string xdmf_after_two;
+  {
+    SnapshotWriter writer(directory.path);
+    for (int k = 0; k < 4; ++k)
+      {
+        system.step();
+        writer.write(system);
+        expected.push_back(record(system));
+        if (k == 1)
+          xdmf_after_two = read_text(writer.xdmf_path());
+      }
+  }
+  SnapshotWriter resumed = SnapshotWriter::resume(directory.path, "particles", expected[1].time);
+  EXPECT_EQ(resumed.n_snapshots(), 2u);
+  EXPECT_EQ(read_text(resumed.xdmf_path()), xdmf_after_two);
+  system.run_steps(3);
+  resumed.write(system);
+  expected[2] = record(system);
+  EXPECT_EQ(resumed.n_snapshots(), 3u);
+  EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);
+  {
+    H5File file(resumed.h5_path());
+    ASSERT_GE(file.id, 0);
+    H5G_info_t root;
+    ASSERT_GE(H5Gget_info(file.id, &root), 0);
+    EXPECT_EQ(root.nlinks, 3u);
+    for (std::size_t k = 0; k < 3; ++k)
+      expect_snapshot(file.id, "/snapshot_00000" + std::to_string(k), expected[k]);
+  }
+  const std::string xdmf = read_text(resumed.xdmf_path());
+  EXPECT_TRUE(well_formed_xml(xdmf)) << xdmf;
+  EXPECT_EQ(count(xdmf, "<Time "), 3u);
+
+  // A missing file starts anew; a damaged one is refused with its name.
+  SnapshotWriter fresh = SnapshotWriter::resume(directory.path / "elsewhere", "particles", 1.0);
+  EXPECT_EQ(fresh.n_snapshots(), 0u);
+  EXPECT_TRUE(fs::exists(fresh.h5_path()));
+  std::ofstream(directory.path / "broken.h5") << "not HDF5";
+  try
+    {
+      SnapshotWriter::resume(directory.path, "broken", 1.0);
+      FAIL() << "no exception";
+    }
+  catch (const std::runtime_error &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("broken.h5"), std::string::npos) << e.what();
+    }
+}

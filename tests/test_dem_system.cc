@@ -1,0 +1,512 @@
+// System-level checks of DemSystem: the energy balance (conservative, dissipative, with a moving
+// wall), the stress servo of a wall, bit-for-bit reproducibility across thread counts, and the
+// refusal of bad input.
+#include "dem/dem_system.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+using namespace geohybrid::dem;
+
+namespace
+{
+constexpr double density = 2650.0, r_max = 0.005, kn = 1.0e6;
+
+ContactParameters law(double friction_deg, double restitution)
+{
+  ContactParameters c;
+  c.normal_stiffness = kn;
+  c.shear_stiffness = 0.5 * kn;
+  c.friction_angle_deg = friction_deg;
+  c.restitution = restitution;
+  return c;
+}
+
+/// nx x ny discs of radii uniform in [r_low, 1] r_max on a square grid of pitch `pitch` r_max
+/// (> 2: no overlaps), with velocity components uniform in [-v, v]. Every `cluster_every`-th body
+/// is a two-disc cluster instead (0: discs only). Deterministic: fixed seed.
+ParticleSet grid_sample(int nx, int ny, double v, int cluster_every = 0, unsigned seed = 42,
+                        double pitch = 2.5, double r_low = 0.7)
+{
+  std::mt19937 generator(seed);
+  std::uniform_real_distribution<double> radius(r_low * r_max, r_max), velocity(-v, v),
+    angle(-pi, pi);
+  pitch *= r_max;
+  ParticleSet p;
+  int k = 0;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i, ++k)
+      {
+        const Vec2 centre((i + 0.5) * pitch, (j + 0.5) * pitch);
+        std::size_t b;
+        if (cluster_every > 0 && k % cluster_every == 0) // within 0.82 r_max of its centre
+          b = p.add_two_disc_cluster(centre, 0.6 * r_max, 0.54 * r_max, 0.5 * r_max, angle(generator), density);
+        else
+          b = p.add_disc(centre, radius(generator), density);
+        p.vx[b] = velocity(generator);
+        p.vy[b] = velocity(generator);
+      }
+  return p;
+}
+
+/// A closed box [0, width] x [0, height] of four walls whose active sides face inwards; returns
+/// the index of the first (the floor; then right, roof, left).
+std::size_t add_box(DemSystem &system, double width, double height, const LinearContactLaw &wall_law)
+{
+  const std::size_t floor = system.add_wall(Wall("floor", Vec2(0.0, 0.0), Vec2(width, 0.0), wall_law));
+  system.add_wall(Wall("right", Vec2(width, 0.0), Vec2(width, height), wall_law));
+  system.add_wall(Wall("roof", Vec2(width, height), Vec2(0.0, height), wall_law));
+  system.add_wall(Wall("left", Vec2(0.0, height), Vec2(0.0, 0.0), wall_law));
+  return floor;
+}
+
+/// Mechanical energy stored now: kinetic + gravitational (zero at y = 0, the floor) + elastic.
+double stored(const EnergyBudget &e) { return e.kinetic + e.gravitational + e.elastic; }
+double dissipated(const EnergyBudget &e)
+{
+  return e.friction_dissipated + e.viscous_dissipated + e.local_damping_dissipated;
+}
+
+constexpr int nx = 20, ny = 15; // 300 discs
+constexpr double box_width = nx * 2.5 * r_max, box_height = 1.2 * ny * 2.5 * r_max;
+
+/// The 300-disc box under gravity used by the energy tests.
+DemSystem box_system(double friction_deg, double restitution, double local_damping, double safety)
+{
+  DemSettings s;
+  s.local_damping = local_damping;
+  s.time_step_safety = safety;
+  const LinearContactLaw contact(law(friction_deg, restitution));
+  DemSystem system(grid_sample(nx, ny, 0.5), contact, s);
+  add_box(system, box_width, box_height, contact);
+  return system;
+}
+} // namespace
+
+// Frictionless, perfectly elastic, undamped: nothing dissipates, so kinetic + gravitational +
+// elastic energy is conserved by the dynamics and only the integrator's error remains. Leapfrog's
+// energy error is O(dt^2) per contact (measured: 8e-5 of E0 over 3000 steps at dt = 0.1 x the
+// critical step, 2e-5 at half the step over the same time); 1e-3 of E0 allows a factor of ~10.
+TEST(EnergyBalance, ConservedWithoutDissipation)
+{
+  DemSystem system = box_system(0.0, 1.0, 0.0, 0.1);
+  system.step();
+  const EnergyBudget e0 = system.energy();
+  const double scale = stored(e0);
+  double max_error = 0.0;
+  for (int k = 0; k < 3000; ++k)
+    {
+      system.step();
+      max_error = std::max(max_error, std::abs(system.energy().total() - e0.total()));
+    }
+  const EnergyBudget e = system.energy();
+  // Nothing may have been booked as dissipated: friction 0 means no slip work at all, e = 1 no
+  // dashpot, alpha = 0 no damping. Exactly zero.
+  EXPECT_EQ(e.friction_dissipated, 0.0);
+  EXPECT_EQ(e.viscous_dissipated, 0.0);
+  EXPECT_EQ(e.local_damping_dissipated, 0.0);
+  EXPECT_EQ(e.boundary_work, 0.0);
+  // Something happened: the discs fell (over 10 % of the potential energy released) and collide.
+  EXPECT_GT(system.n_touching_pairs() + system.n_touching_wall_contacts(), 10u);
+  EXPECT_LT(e.gravitational, 0.9 * e0.gravitational);
+  EXPECT_LT(max_error, 1e-3 * scale);
+}
+
+// Friction (20 deg), dashpots (e = 0.5) and local damping (0.7): the stored energy falls, and
+// what is lost is booked in the three dissipation terms so that total() stays constant. The
+// balance error is O(dt^2) like the integrator's (measured 3.0e-4, 8.8e-5, 2.8e-5 of E0 at 0.2,
+// 0.1, 0.05 x the critical step over the same time). 1e-3 of E0, tighter than the 1 % asked
+// for, leaves a factor 10 and catches a 10 % error in the dashpot term (~3 % of E0; verified by
+// mutation); the dissipated energy is ~35 % of E0.
+TEST(EnergyBalance, ClosesWithDissipation)
+{
+  DemSystem system = box_system(20.0, 0.5, 0.7, 0.1);
+  system.step();
+  const EnergyBudget e0 = system.energy();
+  const double scale = stored(e0);
+  double max_error = 0.0;
+  for (int k = 0; k < 6000; ++k)
+    {
+      system.step();
+      max_error = std::max(max_error, std::abs(system.energy().total() - e0.total()));
+    }
+  const EnergyBudget e = system.energy();
+  EXPECT_GT(e.friction_dissipated, 0.0);
+  EXPECT_GT(e.viscous_dissipated, 0.0);
+  EXPECT_GT(e.local_damping_dissipated, 0.0);
+  EXPECT_EQ(e.boundary_work, 0.0); // fixed walls do no work
+  EXPECT_GT(dissipated(e), 0.25 * scale);
+  EXPECT_LT(max_error, 1e-3 * scale);
+}
+
+// Bonds (a_n = a_s = 30 N/m on every new contact) that break during the fall: the spring energy
+// a breaking bond releases is booked as dissipated, so the balance closes as well as without
+// bonds (measured 3.6e-5 of E0; before that booking, 1.5e-3 of E0 went missing, independent of
+// dt). 3e-4 of E0 is the tolerance: a factor 8 above the measure, a factor 5 below the gap.
+TEST(EnergyBalance, ClosesWithBondBreakage)
+{
+  DemSettings s;
+  s.local_damping = 0.7;
+  s.time_step_safety = 0.1;
+  ContactParameters c = law(20.0, 0.5);
+  c.tensile_strength = 30.0;
+  c.shear_strength = 30.0;
+  const LinearContactLaw contact(c);
+  DemSystem system(grid_sample(nx, ny, 0.5), contact, s);
+  add_box(system, box_width, box_height, contact);
+  system.step();
+  const EnergyBudget e0 = system.energy();
+  double max_error = 0.0;
+  for (int k = 0; k < 6000; ++k)
+    {
+      system.step();
+      max_error = std::max(max_error, std::abs(system.energy().total() - e0.total()));
+    }
+  EXPECT_GT(system.n_broken_bonds(), 50u);
+  EXPECT_LT(max_error, 3e-4 * stored(e0));
+}
+
+// One collision, closed form: the dashpot's booked work equals the kinetic energy the collision
+// removed, 1/2 m v^2 - 1/2 m v'^2 (disc on a wall; and two equal discs head-on, m/2 reduced mass),
+// for several restitution coefficients. Booked with the trapezoidal rule, the error is O(dt^2):
+// measured below 1e-4 relative at 0.02 x the critical step (booking each step's dashpot force
+// with the half-step rate alone gave +0.1 % to +0.9 % here, and +20 % to +40 % at the default
+// 0.5). 5e-4 is the tolerance.
+TEST(EnergyBalance, DashpotWorkEqualsLostKineticEnergy)
+{
+  for (double e : {0.9, 0.5, 0.2})
+    for (bool against_wall : {true, false})
+      {
+        ParticleSet p;
+        const double v = 1.0;
+        p.add_disc(Vec2(0.0, r_max + 1e-5), r_max, density);
+        p.vy[0] = -v;
+        if (!against_wall)
+          {
+            p.add_disc(Vec2(0.0, -r_max - 1e-5), r_max, density);
+            p.vy[1] = v;
+          }
+        DemSettings s;
+        s.gravity = Vec2::Zero();
+        s.local_damping = 0.0;
+        s.time_step_safety = 0.02;
+        DemSystem system(p, LinearContactLaw(law(20.0, e)), s);
+        if (against_wall)
+          system.add_wall(Wall("floor", Vec2(-1.0, 0.0), Vec2(1.0, 0.0), LinearContactLaw(law(20.0, e))));
+        const double kinetic0 = system.energy().kinetic;
+        const ParticleSet &q = system.particles();
+        int steps = 0;
+        while (!(q.y[0] > r_max + 1e-5 && q.vy[0] > 0.0) && steps < 100000) // until it flies off
+          {
+            system.step();
+            ++steps;
+          }
+        ASSERT_LT(steps, 100000);
+        const EnergyBudget b = system.energy();
+        const double lost = kinetic0 - b.kinetic;
+        EXPECT_GT(lost, 0.1 * (1.0 - e * e) * kinetic0) << "e = " << e; // it did dissipate
+        EXPECT_NEAR(b.viscous_dissipated, lost, 5e-4 * lost) << "e = " << e << (against_wall ? " wall" : " pair");
+        EXPECT_EQ(b.elastic, 0.0); // apart again
+      }
+}
+
+namespace
+{
+struct PistonRun
+{
+  double max_error = 0.0, boundary_work = 0.0, scale = 0.0, dissipated = 0.0;
+};
+
+/// The box with its right wall moving inwards at `speed` for 0.096 s.
+PistonRun run_piston(double friction_deg, double restitution, double local_damping, const Vec2 &gravity,
+                     double safety, double speed)
+{
+  DemSettings s;
+  s.gravity = gravity;
+  s.local_damping = local_damping;
+  s.time_step_safety = safety;
+  const LinearContactLaw contact(law(friction_deg, restitution));
+  DemSystem system(grid_sample(nx, ny, 0.5), contact, s);
+  const std::size_t right = add_box(system, box_width, box_height, contact) + 1;
+  system.walls()[right].velocity = Vec2(-speed, 0.0);
+  system.step();
+  const EnergyBudget e0 = system.energy();
+  PistonRun r;
+  r.scale = stored(e0);
+  const int steps = static_cast<int>(std::lround(300.0 / safety));
+  for (int k = 0; k < steps; ++k)
+    {
+      system.step();
+      r.max_error = std::max(r.max_error, std::abs(system.energy().total() - e0.total()));
+    }
+  // The wall moved at its prescribed speed (positions of O(0.1) m: 1e-12 is rounding).
+  EXPECT_NEAR(system.walls()[right].start.x(), box_width - speed * system.time(), 1e-12);
+  r.boundary_work = system.energy().boundary_work - e0.boundary_work;
+  r.dissipated = dissipated(system.energy());
+  return r;
+}
+} // namespace
+
+// A piston compressing a frictionless elastic gas of discs (no gravity): the wall's work goes into
+// kinetic and elastic energy and is booked as boundary_work, so total() stays constant. The wall
+// force is integrated by the trapezoidal rule, second order like the integrator: the balance
+// error is O(dt^2) (measured 1.4e-3, 4.5e-4, 1.0e-4 of the energy scale at 0.2, 0.1, 0.05 x the
+// critical step, the same as without the piston). At 0.05, 1e-3 of the scale leaves a factor 10,
+// while the boundary work is 13 % of the scale: an unbooked or mis-signed wall work would show.
+TEST(EnergyBalance, MovingWallWorkEntersBalance)
+{
+  const PistonRun r = run_piston(0.0, 1.0, 0.0, Vec2::Zero(), 0.05, 0.1); // 9.6 mm of 250 mm
+  EXPECT_GT(r.boundary_work, 0.05 * r.scale); // the piston heats the gas
+  EXPECT_LT(r.max_error, 1e-3 * r.scale);
+}
+
+// The same with gravity, friction, dashpots and local damping, the piston pushing through the
+// settling sample at 0.5 m/s: the balance error (measured 3e-4 of the energy scale) stays within
+// 3e-3 of it, while the boundary work is larger than the whole scale.
+TEST(EnergyBalance, MovingWallWithDissipation)
+{
+  const PistonRun r = run_piston(20.0, 0.5, 0.7, Vec2(0.0, -9.81), 0.1, 0.5); // 48 mm of 250 mm
+  EXPECT_GT(r.dissipated, 0.1 * r.scale);
+  EXPECT_GT(r.boundary_work, 1.0 * r.scale); // far above the tolerance: its booking matters
+  EXPECT_LT(r.max_error, 3e-3 * r.scale);
+}
+
+// A roof wall servo-controlled to 10 kPa compresses 100 discs (gravity on, local damping 0.7)
+// against the fixed floor. The discs start on a grid with random velocities, so that they
+// collapse into a disordered packing (the stacked columns of a grid at rest are unstable and
+// would buckle later, at an arbitrary time). Once settled (measured: by ~2700 steps) the roof's
+// normal stress is the target; with frictionless walls the floor carries the roof's force plus
+// the weight of the discs (vertical equilibrium). Then the right wall pushes in at 5 mm/s and the
+// servo roof must retreat: PFC's servo then lags by v N kn dt / (alpha L) ~ 30 Pa at the roof's
+// speed v ~ 1 mm/s (measured 35 Pa, 0.35 %). 2 % is the tolerance asked for.
+TEST(ServoWall, HoldsTargetStress)
+{
+  constexpr int n_side = 10;
+  const double width = n_side * 2.5 * r_max, target = 1.0e4;
+  DemSettings s;
+  s.local_damping = 0.7;
+  const LinearContactLaw contact(law(20.0, 0.5)), wall_law(law(0.0, 0.5));
+  DemSystem system(grid_sample(n_side, n_side, 0.5), contact, s);
+  const std::size_t floor = add_box(system, width, width, wall_law), right = floor + 1, roof = floor + 2;
+  Wall &servo = system.walls()[roof];
+  servo.control = WallControl::servo_stress;
+  servo.servo.target_stress = target;
+  servo.servo.max_speed = 0.2;
+  double weight = 0.0;
+  for (double m : system.particles().mass)
+    weight += m * 9.81;
+
+  system.run_steps(3500);
+  double max_deviation = 0.0, max_equilibrium_error = 0.0;
+  for (int k = 0; k < 500; ++k)
+    {
+      system.step();
+      const Wall &top = system.walls()[roof], &bottom = system.walls()[floor];
+      max_deviation = std::max(max_deviation, std::abs(top.normal_stress() - target));
+      const double roof_force = top.normal_stress() * top.length();
+      max_equilibrium_error =
+        std::max(max_equilibrium_error, std::abs(bottom.normal_stress() * bottom.length() - roof_force - weight));
+    }
+  EXPECT_LT(max_deviation, 0.02 * target);
+  EXPECT_LT(max_equilibrium_error, 0.02 * (target * width + weight));
+  // The roof really compressed the sample: it came down to about half the box.
+  const double settled_height = system.walls()[roof].start.y();
+  EXPECT_LT(settled_height, 0.6 * width);
+  EXPECT_GT(system.walls()[roof].n_contacts, 2u);
+
+  system.walls()[right].velocity = Vec2(-5e-3, 0.0);
+  max_deviation = 0.0;
+  for (int k = 0; k < 2000; ++k)
+    {
+      system.step();
+      max_deviation = std::max(max_deviation, std::abs(system.walls()[roof].normal_stress() - target));
+    }
+  EXPECT_LT(max_deviation, 0.02 * target);
+  // Squeezed sideways by 1.6 mm, the sample pushed the roof up (by a fraction of a millimetre).
+  EXPECT_GT(system.walls()[roof].start.y(), settled_height + 1e-4);
+}
+
+namespace
+{
+/// 3000 bodies (every tenth a two-disc cluster) in a box under gravity, with friction, dashpots,
+/// local damping and weak bonds, so that every code path of a step is exercised, including bond
+/// breakage. They start near contact (radii 0.92-1 r_max on a 2.05 r_max grid: every grid
+/// neighbour within the Verlet skin), so that the pair list holds more than 4096 pairs from the
+/// first step and the deterministic sums run over several blocks, in parallel.
+DemSystem deposition(int n_threads)
+{
+  constexpr int n_x = 60, n_y = 50;
+  constexpr double pitch = 2.05;
+  DemSettings s;
+  s.n_threads = n_threads;
+  s.local_damping = 0.7;
+  ContactParameters c = law(20.0, 0.5);
+  c.tensile_strength = 2.0;
+  c.shear_strength = 2.0;
+  const LinearContactLaw contact(c);
+  DemSystem system(grid_sample(n_x, n_y, 0.1, 10, 7, pitch, 0.92), contact, s);
+  add_box(system, n_x * pitch * r_max, n_y * pitch * r_max, LinearContactLaw(law(20.0, 0.5)));
+  return system;
+}
+
+void expect_identical(const DemSystem &one, const DemSystem &two)
+{
+  const ParticleSet &a = one.particles(), &b = two.particles();
+  ASSERT_EQ(a.n_bodies(), b.n_bodies());
+  EXPECT_EQ(a.x, b.x);
+  EXPECT_EQ(a.y, b.y);
+  EXPECT_EQ(a.rotation, b.rotation);
+  EXPECT_EQ(a.vx, b.vx);
+  EXPECT_EQ(a.vy, b.vy);
+  EXPECT_EQ(a.omega, b.omega);
+  EXPECT_EQ(a.fx, b.fx);
+  EXPECT_EQ(a.fy, b.fy);
+  EXPECT_EQ(a.torque, b.torque);
+  EXPECT_EQ(a.disc_x, b.disc_x);
+  EXPECT_EQ(a.disc_y, b.disc_y);
+  const EnergyBudget ea = one.energy(), eb = two.energy();
+  EXPECT_EQ(ea.kinetic, eb.kinetic);
+  EXPECT_EQ(ea.gravitational, eb.gravitational);
+  EXPECT_EQ(ea.elastic, eb.elastic);
+  EXPECT_EQ(ea.friction_dissipated, eb.friction_dissipated);
+  EXPECT_EQ(ea.viscous_dissipated, eb.viscous_dissipated);
+  EXPECT_EQ(ea.local_damping_dissipated, eb.local_damping_dissipated);
+  EXPECT_EQ(ea.boundary_work, eb.boundary_work);
+  EXPECT_EQ(one.n_broken_bonds(), two.n_broken_bonds());
+  EXPECT_EQ(one.n_neighbour_rebuilds(), two.n_neighbour_rebuilds());
+  EXPECT_EQ(one.pair_contacts().disc_i, two.pair_contacts().disc_i);
+  EXPECT_EQ(one.pair_contacts().disc_j, two.pair_contacts().disc_j);
+}
+} // namespace
+
+// The same deposition on 1 and 2 threads gives the same numbers, bit for bit: every loop writes
+// each value from one thread and every sum is taken in one fixed order (dem_system.h). Exact
+// equality is the only meaningful tolerance here. Only 300 steps: on a loaded 2-core machine each
+// of the ~8 parallel regions of a step of the 2-thread run can spin for a scheduler slice while
+// its second thread waits for a core (libgomp's default active wait; measured here: 1 s with
+// OMP_WAIT_POLICY=passive, 55 s without, for 1000 steps). A differing rounding anywhere cannot
+// vanish in a colliding packing, so 300 steps with ~25 list rebuilds and many bond breaks suffice.
+TEST(Threads, OneAndTwoThreadsBitForBit)
+{
+  DemSystem one = deposition(1), two = deposition(2);
+  one.step();
+  two.step();
+  EXPECT_GT(one.pair_contacts().size(), 4096u); // several blocks in deterministic_sum
+  for (int k = 0; k < 299; ++k)
+    {
+      one.step();
+      two.step();
+    }
+  expect_identical(one, two);
+  // The run exercised what it claims to: contacts in more than one summation block, broken
+  // bonds, dissipation, list rebuilds.
+  EXPECT_GT(one.pair_contacts().size(), 4096u);
+  EXPECT_GT(one.n_touching_pairs(), 300u);
+  EXPECT_GT(one.n_broken_bonds(), 0u);
+  EXPECT_GT(one.energy().viscous_dissipated, 0.0);
+  EXPECT_GT(one.energy().friction_dissipated, 0.0);
+  EXPECT_GT(one.n_neighbour_rebuilds(), 10u);
+}
+
+// Contact parameters are checked where they enter, with a message naming the parameter.
+TEST(BadInput, ContactParametersRefused)
+{
+  const auto message_of = [](const ContactParameters &c) -> std::string {
+    try
+      {
+        LinearContactLaw law_(c);
+      }
+    catch (const std::invalid_argument &e)
+      {
+        return e.what();
+      }
+    return "";
+  };
+  ContactParameters c = law(20.0, 0.5);
+  EXPECT_NO_THROW(c.validate("test"));
+
+  ContactParameters bad = c;
+  bad.normal_stiffness = -1.0e6;
+  EXPECT_THROW(bad.validate("test"), std::invalid_argument);
+  EXPECT_NE(message_of(bad).find("normal stiffness"), std::string::npos) << message_of(bad);
+
+  for (double angle : {90.0, 95.0, -1.0})
+    {
+      bad = c;
+      bad.friction_angle_deg = angle;
+      EXPECT_THROW(bad.validate("test"), std::invalid_argument) << angle;
+      EXPECT_NE(message_of(bad).find("friction angle"), std::string::npos) << message_of(bad);
+    }
+  bad.friction_angle_deg = 89.9; // just below 90 is allowed
+  EXPECT_NO_THROW(bad.validate("test"));
+
+  for (double e : {0.0, -0.5, 1.01})
+    {
+      bad = c;
+      bad.restitution = e;
+      EXPECT_THROW(bad.validate("test"), std::invalid_argument) << e;
+      EXPECT_NE(message_of(bad).find("restitution"), std::string::npos) << message_of(bad);
+    }
+  bad.restitution = 1.0; // the end of (0, 1] is allowed
+  EXPECT_NO_THROW(bad.validate("test"));
+  // validate names its caller.
+  bad.normal_stiffness = 0.0;
+  try
+    {
+      bad.validate("wall 'floor'");
+      ADD_FAILURE() << "zero normal stiffness accepted";
+    }
+  catch (const std::invalid_argument &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("wall 'floor'"), std::string::npos) << e.what();
+    }
+}
+
+// A step above the critical one is refused, naming the stable limit (its value in the message);
+// the critical step itself is accepted. A thread count of 0 is refused.
+TEST(BadInput, TimeStepAndThreads)
+{
+  ParticleSet p;
+  p.add_disc(Vec2(0.0, 0.0), r_max, density);
+  p.add_disc(Vec2(3.0 * r_max, 0.0), 0.7 * r_max, density);
+  DemSettings s;
+  const LinearContactLaw contact(law(20.0, 0.5));
+  DemSystem system(p, contact, s);
+  // Independent value of the limit: the lighter disc, m = rho pi r^2, against k = max(kn, ks),
+  // and its rotation, I = m r^2 / 2 against ks r^2: sqrt(m / kn) = sqrt(I / (ks r^2)) here.
+  const double m = density * pi * 0.49 * r_max * r_max;
+  const double dt_crit = std::sqrt(m / kn);
+  EXPECT_NEAR(system.critical_time_step(), dt_crit, 1e-12 * dt_crit);
+  EXPECT_NO_THROW(system.set_time_step(system.critical_time_step()));
+  EXPECT_EQ(system.time_step(), system.critical_time_step());
+  try
+    {
+      system.set_time_step(1.01 * dt_crit);
+      ADD_FAILURE() << "a step above the critical one was accepted";
+    }
+  catch (const std::invalid_argument &e)
+    {
+      std::ostringstream limit;
+      limit << system.critical_time_step();
+      const std::string what = e.what();
+      EXPECT_NE(what.find("stable limit"), std::string::npos) << what;
+      EXPECT_NE(what.find(limit.str()), std::string::npos) << what << " (limit " << limit.str() << ")";
+    }
+  EXPECT_EQ(system.time_step(), system.critical_time_step()); // unchanged by the refusal
+  EXPECT_THROW(system.set_time_step(0.0), std::invalid_argument);
+  EXPECT_THROW(system.set_time_step(-1e-6), std::invalid_argument);
+
+  s.time_step = 2.0 * dt_crit; // a user step in the settings is checked too
+  EXPECT_THROW(DemSystem(p, contact, s), std::invalid_argument);
+
+  DemSettings no_threads;
+  no_threads.n_threads = 0;
+  EXPECT_THROW(DemSystem(p, contact, no_threads), std::invalid_argument);
+  no_threads.n_threads = -2;
+  EXPECT_THROW(DemSystem(p, contact, no_threads), std::invalid_argument);
+}

@@ -1,0 +1,191 @@
+#include "biaxial_test.h"
+
+#include "measurements.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+namespace geohybrid::dem
+{
+BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, const BiaxialSpec &spec,
+                              double mean_diameter, double density, const std::function<void(double)> &progress)
+{
+  if (!(spec.confining_stress > 0.0))
+    throw std::invalid_argument("biaxial test: the confining stress must be positive");
+  if (!(spec.final_axial_strain > 0.0 && spec.final_axial_strain < 0.5))
+    throw std::invalid_argument("biaxial test: the final axial strain must lie in (0, 0.5)");
+  if (spec.top_wall_speed < 0.0 || (spec.top_wall_speed == 0.0 && !(spec.target_inertial_number > 0.0)))
+    throw std::invalid_argument("biaxial test: the top wall speed must be positive (or set an inertial number)");
+
+  const double H0 = box.height(system), W0 = box.width(system);
+  // Inertial number I = (V / H) d sqrt(rho / sigma_0): below ~1e-3 the test is quasi-static.
+  const double speed = spec.top_wall_speed > 0.0
+                         ? spec.top_wall_speed
+                         : spec.target_inertial_number * H0 / (mean_diameter * std::sqrt(density / spec.confining_stress));
+  BiaxialCurve curve;
+  curve.confining_stress = spec.confining_stress;
+  curve.top_wall_speed = speed;
+  curve.inertial_number = speed / H0 * mean_diameter * std::sqrt(density / spec.confining_stress);
+  curve.initial_porosity = 1.0 - total_solid_area(system.particles()) / (H0 * W0);
+
+  std::vector<Wall> &walls = system.walls();
+  box.servo_sides(system, spec.confining_stress, true, 0.0, false, spec.servo_max_speed);
+  walls[box.bottom].control = WallControl::prescribed_velocity;
+  walls[box.bottom].velocity = Vec2::Zero();
+  walls[box.top].control = WallControl::prescribed_velocity;
+  walls[box.top].velocity = Vec2(0.0, -speed);
+
+  const auto record = [&] {
+    BiaxialPoint p;
+    p.axial_strain = (H0 - box.height(system)) / H0;
+    p.lateral_strain = (W0 - box.width(system)) / W0;
+    p.volumetric_strain = p.axial_strain + p.lateral_strain;
+    p.axial_stress = box.vertical_stress(system);
+    p.lateral_stress = box.horizontal_stress(system);
+    p.deviatoric_stress = p.axial_stress - p.lateral_stress;
+    curve.points.push_back(p);
+  };
+  record();
+  double next_record = spec.record_interval;
+  for (;;)
+    {
+      box.update_loaded_lengths(system);
+      system.step();
+      const double strain = (H0 - box.height(system)) / H0;
+      if (strain >= next_record)
+        {
+          record();
+          next_record += spec.record_interval;
+          if (progress)
+            progress(std::min(1.0, strain / spec.final_axial_strain));
+        }
+      if (strain >= spec.final_axial_strain)
+        break;
+    }
+  walls[box.top].velocity = Vec2::Zero();
+  return curve;
+}
+
+std::pair<double, double> fit_mohr_coulomb(const std::vector<double> &sigma_1, const std::vector<double> &sigma_3)
+{
+  const std::size_t n = sigma_1.size();
+  if (n == 0 || sigma_3.size() != n)
+    throw std::invalid_argument("Mohr-Coulomb fit: need as many sigma_1 as sigma_3, at least one");
+  std::vector<double> s(n), t(n);
+  for (std::size_t k = 0; k < n; ++k)
+    {
+      s[k] = 0.5 * (sigma_1[k] + sigma_3[k]);
+      t[k] = 0.5 * (sigma_1[k] - sigma_3[k]);
+    }
+  if (n == 1)
+    return {std::asin(std::clamp(t[0] / s[0], -1.0, 1.0)) * 180.0 / pi, 0.0};
+  const double s_mean = std::accumulate(s.begin(), s.end(), 0.0) / n;
+  const double t_mean = std::accumulate(t.begin(), t.end(), 0.0) / n;
+  double sst = 0.0, ss = 0.0;
+  for (std::size_t k = 0; k < n; ++k)
+    {
+      sst += (s[k] - s_mean) * (t[k] - t_mean);
+      ss += (s[k] - s_mean) * (s[k] - s_mean);
+    }
+  const double slope = std::clamp(sst / ss, -1.0, 1.0);
+  const double phi = std::asin(slope);
+  const double intercept = t_mean - slope * s_mean;
+  return {phi * 180.0 / pi, intercept / std::cos(phi)};
+}
+
+namespace
+{
+/// Least-squares slope of y against x over points [first, last).
+double slope(const std::vector<BiaxialPoint> &p, std::size_t first, std::size_t last,
+             double BiaxialPoint::*x, double BiaxialPoint::*y)
+{
+  double xm = 0.0, ym = 0.0;
+  const double n = static_cast<double>(last - first);
+  for (std::size_t k = first; k < last; ++k)
+    {
+      xm += p[k].*x;
+      ym += p[k].*y;
+    }
+  xm /= n;
+  ym /= n;
+  double sxy = 0.0, sxx = 0.0;
+  for (std::size_t k = first; k < last; ++k)
+    {
+      sxy += (p[k].*x - xm) * (p[k].*y - ym);
+      sxx += (p[k].*x - xm) * (p[k].*x - xm);
+    }
+  return sxx > 0.0 ? sxy / sxx : 0.0;
+}
+} // namespace
+
+BiaxialParameters analyse_biaxial_curves(const std::vector<BiaxialCurve> &curves)
+{
+  if (curves.empty())
+    throw std::invalid_argument("biaxial analysis: no curve");
+  BiaxialParameters r;
+  std::vector<double> peak_1, peak_3, residual_1, residual_3;
+  for (const BiaxialCurve &c : curves)
+    {
+      const std::vector<BiaxialPoint> &p = c.points;
+      if (p.size() < 10)
+        throw std::invalid_argument("biaxial analysis: a curve has fewer than 10 points");
+      const auto peak = std::max_element(p.begin(), p.end(), [](const BiaxialPoint &a, const BiaxialPoint &b) {
+        return a.deviatoric_stress < b.deviatoric_stress;
+      });
+      peak_1.push_back(peak->axial_stress);
+      peak_3.push_back(peak->lateral_stress);
+      // Residual: mean state over the last 10 % of the axial strain.
+      const double last_strain = p.back().axial_strain;
+      double s1 = 0.0, s3 = 0.0;
+      std::size_t n = 0;
+      for (const BiaxialPoint &q : p)
+        if (q.axial_strain >= 0.9 * last_strain)
+          {
+            s1 += q.axial_stress;
+            s3 += q.lateral_stress;
+            ++n;
+          }
+      residual_1.push_back(s1 / n);
+      residual_3.push_back(s3 / n);
+
+      // Elastic part: points up to 30 % of the peak deviator (at least 3 points).
+      const double q_peak = peak->deviatoric_stress;
+      std::size_t elastic_end = 1;
+      while (elastic_end < p.size() && p[elastic_end].deviatoric_stress < 0.3 * q_peak)
+        ++elastic_end;
+      elastic_end = std::max<std::size_t>(elastic_end + 1, 3);
+      r.young_modulus += slope(p, 0, elastic_end, &BiaxialPoint::axial_strain, &BiaxialPoint::deviatoric_stress);
+      r.poisson_ratio += -slope(p, 0, elastic_end, &BiaxialPoint::axial_strain, &BiaxialPoint::lateral_strain);
+      // E50: secant to half the peak deviator, interpolated.
+      std::size_t k = 1;
+      while (k < p.size() && p[k].deviatoric_stress < 0.5 * q_peak)
+        ++k;
+      const double q0 = p[k - 1].deviatoric_stress, q1 = p[k].deviatoric_stress;
+      const double e50 = p[k - 1].axial_strain +
+                         (0.5 * q_peak - q0) / (q1 - q0) * (p[k].axial_strain - p[k - 1].axial_strain);
+      r.young_modulus_50 += 0.5 * q_peak / e50;
+      // Dilatancy: the largest dilation rate, sin psi = -d(ev)/d(ea - el), over a 5-point window.
+      double best = 0.0;
+      for (std::size_t j = 0; j + 5 < p.size(); ++j)
+        {
+          const double dev = p[j + 5].volumetric_strain - p[j].volumetric_strain;
+          const double dshear = (p[j + 5].axial_strain - p[j + 5].lateral_strain) - (p[j].axial_strain - p[j].lateral_strain);
+          if (dshear > 0.0)
+            best = std::max(best, -dev / dshear);
+        }
+      r.dilatancy_angle_deg += std::asin(std::clamp(best, 0.0, 1.0)) * 180.0 / pi;
+    }
+  const double n = static_cast<double>(curves.size());
+  r.young_modulus /= n;
+  r.young_modulus_50 /= n;
+  r.poisson_ratio /= n;
+  r.dilatancy_angle_deg /= n;
+  const auto [phi, c] = fit_mohr_coulomb(peak_1, peak_3);
+  r.peak_friction_angle_deg = phi;
+  r.cohesion = c;
+  r.residual_friction_angle_deg = fit_mohr_coulomb(residual_1, residual_3).first;
+  return r;
+}
+} // namespace geohybrid::dem

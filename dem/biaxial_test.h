@@ -1,0 +1,70 @@
+#pragma once
+// The biaxial compression test of the reference paper (section 4.2, Figure 6): a sample in a box
+// of four frictionless walls, the lateral walls servo-controlled at a constant stress sigma_0,
+// the top wall moving down at a constant speed V slow enough to be quasi-static. Strains and
+// stresses come from the walls' displacements and forces. Compression is positive here, as in
+// soil mechanics.
+#include "box.h"
+#include "dem_system.h"
+
+#include <functional>
+#include <vector>
+
+namespace geohybrid::dem
+{
+struct BiaxialSpec
+{
+  double confining_stress = 10e3;   ///< sigma_0 on the lateral walls [Pa]
+  double top_wall_speed = 0.0;      ///< V [m/s]; 0 = from target_inertial_number
+  double target_inertial_number = 2e-4; ///< used when top_wall_speed is 0 [-]
+  double final_axial_strain = 0.10; ///< [-]
+  double record_interval = 1e-3;    ///< axial strain between recorded points [-]
+  double servo_max_speed = 0.05;    ///< cap on the lateral walls' speed [m/s]
+};
+
+struct BiaxialPoint
+{
+  double axial_strain;       ///< (H0 - H) / H0
+  double lateral_strain;     ///< (W0 - W) / W0
+  double volumetric_strain;  ///< axial + lateral (2D), compression positive
+  double axial_stress;       ///< mean of the top and bottom wall stresses [Pa]
+  double lateral_stress;     ///< mean of the left and right wall stresses [Pa]
+  double deviatoric_stress;  ///< axial - lateral [Pa]
+};
+
+struct BiaxialCurve
+{
+  double confining_stress = 0.0;
+  double initial_porosity = 0.0;
+  double top_wall_speed = 0.0;
+  double inertial_number = 0.0; ///< I = strain rate x mean diameter x sqrt(density / sigma_0)
+  std::vector<BiaxialPoint> points;
+};
+
+/// Shears the sample held by `system` in `box` (its walls are reused: lateral walls become
+/// servo-controlled, the bottom wall fixed, the top wall driven down). `mean_diameter` and
+/// `density` give the inertial number.
+BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, const BiaxialSpec &spec,
+                              double mean_diameter, double density,
+                              const std::function<void(double)> &progress = {});
+
+/// Macroscopic parameters read from biaxial curves at one or more confining stresses.
+struct BiaxialParameters
+{
+  double peak_friction_angle_deg = 0.0;     ///< Mohr-Coulomb fit of the peaks
+  double cohesion = 0.0;                    ///< [Pa], from the same fit (0 for one confinement)
+  double residual_friction_angle_deg = 0.0; ///< fit of the residual states (last 10 % of strain)
+  double young_modulus = 0.0;               ///< initial tangent d(q)/d(axial strain) [Pa]
+  double young_modulus_50 = 0.0;            ///< secant at half the peak deviator (E50) [Pa]
+  double poisson_ratio = 0.0;               ///< -d(lateral strain)/d(axial strain), initial
+  double dilatancy_angle_deg = 0.0;         ///< sin psi = -dev/(dea - del) at the peak dilation rate
+};
+
+/// Mohr-Coulomb fit t = c cos(phi) + s sin(phi) over (s, t) = ((s1 + s3)/2, (s1 - s3)/2) pairs,
+/// by least squares; with one pair, c = 0 and sin(phi) = t/s. Returns {phi [deg], c [Pa]}.
+std::pair<double, double> fit_mohr_coulomb(const std::vector<double> &sigma_1, const std::vector<double> &sigma_3);
+
+/// Elastic and strength parameters of the curves; the moduli and angles are averaged over the
+/// confinements, the friction angles fitted across them.
+BiaxialParameters analyse_biaxial_curves(const std::vector<BiaxialCurve> &curves);
+} // namespace geohybrid::dem

@@ -1,0 +1,645 @@
+#include "checkpoint.h"
+
+#include "hdf5_handles.h"
+
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <cerrno>
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace geohybrid::dem
+{
+namespace
+{
+using hdf5::check;
+using hdf5::fail;
+using hdf5::Handle;
+
+constexpr const char *format_name = "geohybrid DEM checkpoint";
+
+// A field added to a stored structure must be added to the file too, or a resumed run silently
+// differs from the straight one. These sizes (x86-64, libstdc++) make such a change fail to
+// compile here: store the new field below (raising checkpoint_format_version if files of the old
+// layout exist), extend test_dem_checkpoint's comparison, then update the size.
+#if defined(__x86_64__) && defined(__GLIBCXX__)
+static_assert(sizeof(ContactState) == 24, "ContactState changed: update the checkpoint");
+static_assert(sizeof(ContactParameters) == 56, "ContactParameters changed: update the checkpoint");
+static_assert(sizeof(WallServo) == 24, "WallServo changed: update the checkpoint");
+static_assert(sizeof(Wall) == 240, "Wall changed: update the checkpoint");
+static_assert(sizeof(ParticleSet) == 22 * sizeof(std::vector<double>), "ParticleSet changed: update the checkpoint");
+static_assert(sizeof(PairContacts) == 13 * sizeof(std::vector<double>), "PairContacts changed: update the checkpoint");
+static_assert(sizeof(WallContacts) == 7 * sizeof(std::vector<double>), "WallContacts changed: update the checkpoint");
+static_assert(sizeof(EnergyBudget) == 7 * sizeof(double), "EnergyBudget changed: update the checkpoint");
+static_assert(sizeof(DemSystemState) == 1232, "DemSystemState changed: update the checkpoint");
+#endif
+
+std::string describe(const std::filesystem::path &file) { return "DEM checkpoint '" + file.string() + "'"; }
+
+// ---- types ----------------------------------------------------------------------------------------
+
+/// File and memory HDF5 types of the C++ types stored, and the class a file type must have.
+template <typename T>
+struct Type;
+template <>
+struct Type<double>
+{
+  static hid_t file() { return H5T_IEEE_F64LE; }
+  static hid_t memory() { return H5T_NATIVE_DOUBLE; }
+  static constexpr H5T_class_t type_class = H5T_FLOAT;
+};
+template <>
+struct Type<std::int64_t>
+{
+  static hid_t file() { return H5T_STD_I64LE; }
+  static hid_t memory() { return H5T_NATIVE_INT64; }
+  static constexpr H5T_class_t type_class = H5T_INTEGER;
+};
+template <>
+struct Type<std::uint64_t>
+{
+  static hid_t file() { return H5T_STD_U64LE; }
+  static hid_t memory() { return H5T_NATIVE_UINT64; }
+  static constexpr H5T_class_t type_class = H5T_INTEGER;
+};
+template <>
+struct Type<std::uint32_t>
+{
+  static hid_t file() { return H5T_STD_U32LE; }
+  static hid_t memory() { return H5T_NATIVE_UINT32; }
+  static constexpr H5T_class_t type_class = H5T_INTEGER;
+};
+template <>
+struct Type<std::uint8_t>
+{
+  static hid_t file() { return H5T_STD_U8LE; }
+  static hid_t memory() { return H5T_NATIVE_UINT8; }
+  static constexpr H5T_class_t type_class = H5T_INTEGER;
+};
+
+// ---- writing ----------------------------------------------------------------------------------------
+
+template <typename T>
+void put_attr(hid_t parent, const char *name, T value, const std::string &where)
+{
+  hdf5::write_attribute(parent, name, Type<T>::file(), Type<T>::memory(), &value, where);
+}
+
+/// A dataset of `values.size() / columns` rows (one dimension if columns == 1).
+template <typename T>
+void put(hid_t parent, const char *name, const std::vector<T> &values, const std::string &where,
+         std::size_t columns = 1)
+{
+  std::vector<hsize_t> dims{values.size() / columns};
+  if (columns > 1)
+    dims.push_back(columns);
+  hdf5::write_dataset(parent, name, Type<T>::file(), Type<T>::memory(), dims, values.data(), where);
+}
+
+void put(hid_t parent, const char *name, const std::vector<Vec2> &values, const std::string &where)
+{
+  std::vector<double> flat;
+  flat.reserve(2 * values.size());
+  for (const Vec2 &v : values)
+    flat.insert(flat.end(), {v.x(), v.y()});
+  put(parent, name, flat, where, 2);
+}
+
+void put(hid_t parent, const char *name, const Vec2 &value, const std::string &where)
+{
+  put(parent, name, std::vector<double>{value.x(), value.y()}, where);
+}
+
+std::uint8_t as_byte(bool b) { return b ? 1 : 0; }
+
+void put_states(hid_t parent, const std::vector<ContactState> &states, const std::string &where)
+{
+  std::vector<double> tangential_force(states.size()), dashpot_force(states.size());
+  std::vector<std::uint8_t> bonded(states.size()), touching(states.size());
+  for (std::size_t q = 0; q < states.size(); ++q)
+    {
+      tangential_force[q] = states[q].tangential_force;
+      bonded[q] = as_byte(states[q].bonded);
+      touching[q] = as_byte(states[q].touching);
+      dashpot_force[q] = states[q].dashpot_force;
+    }
+  put(parent, "tangential_force", tangential_force, where);
+  put(parent, "bonded", bonded, where);
+  put(parent, "touching", touching, where);
+  put(parent, "dashpot_force", dashpot_force, where);
+}
+
+std::string numbered(const char *prefix, std::size_t index)
+{
+  char name[48];
+  std::snprintf(name, sizeof(name), "%s_%06zu", prefix, index);
+  return name;
+}
+
+const char *control_name(WallControl control)
+{
+  return control == WallControl::servo_stress ? "servo_stress" : "prescribed_velocity";
+}
+
+void put_law(hid_t parent, const char *name, const ContactParameters &c, const std::string &where)
+{
+  Handle law = hdf5::create_group(parent, name, where);
+  put_attr(law.get(), "normal_stiffness", c.normal_stiffness, where);
+  put_attr(law.get(), "shear_stiffness", c.shear_stiffness, where);
+  put_attr(law.get(), "friction_angle_deg", c.friction_angle_deg, where);
+  put_attr(law.get(), "shear_strength", c.shear_strength, where);
+  put_attr(law.get(), "tensile_strength", c.tensile_strength, where);
+  put_attr(law.get(), "restitution", c.restitution, where);
+  put_attr(law.get(), "bond_new_contacts", as_byte(c.bond_new_contacts), where);
+}
+
+void put_wall(hid_t group, const Wall &wall, const std::string &where)
+{
+  hdf5::write_string_attribute(group, "name", wall.name, where);
+  hdf5::write_string_attribute(group, "control", control_name(wall.control), where);
+  put_attr<std::uint64_t>(group, "n_contacts", wall.n_contacts, where);
+  put_attr(group, "servo_target_stress", wall.servo.target_stress, where);
+  put_attr(group, "servo_relaxation", wall.servo.relaxation, where);
+  put_attr(group, "servo_max_speed", wall.servo.max_speed, where);
+  put(group, "start", wall.start, where);
+  put(group, "end", wall.end, where);
+  put(group, "velocity", wall.velocity, where);
+  put(group, "force_from_particles", wall.force_from_particles, where);
+  put_attr(group, "loaded_length", wall.loaded_length, where);
+  put_law(group, "law", wall.law.parameters(), where);
+}
+
+void put_everything(hid_t file, const DemSystemState &s, const std::string &where)
+{
+  hdf5::write_string_attribute(file, "format", format_name, where);
+  put_attr(file, "format_version", checkpoint_format_version, where);
+  put_attr(file, "time", s.time, where);
+  put_attr(file, "time_step", s.time_step, where);
+  put_attr(file, "skin", s.skin, where);
+  put_attr(file, "radius_growth_since_rebuild", s.radius_growth_since_rebuild, where);
+  put_law(file, "particle_law", s.particle_contact, where);
+  put_attr(file, "step_count", s.step_count, where);
+  put_attr(file, "n_rebuilds", s.n_rebuilds, where);
+  put_attr(file, "n_broken_bonds", s.n_broken_bonds, where);
+  put_attr(file, "rebuild_needed", as_byte(s.rebuild_needed), where);
+  {
+    Handle g = hdf5::create_group(file, "energy", where);
+    const EnergyBudget &e = s.accumulated;
+    put_attr(g.get(), "kinetic", e.kinetic, where);
+    put_attr(g.get(), "gravitational", e.gravitational, where);
+    put_attr(g.get(), "elastic", e.elastic, where);
+    put_attr(g.get(), "friction_dissipated", e.friction_dissipated, where);
+    put_attr(g.get(), "viscous_dissipated", e.viscous_dissipated, where);
+    put_attr(g.get(), "local_damping_dissipated", e.local_damping_dissipated, where);
+    put_attr(g.get(), "boundary_work", e.boundary_work, where);
+  }
+  {
+    Handle g = hdf5::create_group(file, "particles", where);
+    const ParticleSet &p = s.particles;
+    put(g.get(), "body_id", p.body_id, where);
+    put(g.get(), "x", p.x, where);
+    put(g.get(), "y", p.y, where);
+    put(g.get(), "rotation", p.rotation, where);
+    put(g.get(), "vx", p.vx, where);
+    put(g.get(), "vy", p.vy, where);
+    put(g.get(), "omega", p.omega, where);
+    put(g.get(), "fx", p.fx, where);
+    put(g.get(), "fy", p.fy, where);
+    put(g.get(), "torque", p.torque, where);
+    put(g.get(), "mass", p.mass, where);
+    put(g.get(), "inertia", p.inertia, where);
+    put(g.get(), "inverse_mass", p.inverse_mass, where);
+    put(g.get(), "inverse_inertia", p.inverse_inertia, where);
+    put(g.get(), "first_disc", p.first_disc, where);
+    put(g.get(), "n_discs", p.n_discs, where);
+    put(g.get(), "disc_body", p.disc_body, where);
+    put(g.get(), "disc_radius", p.disc_radius, where);
+    put(g.get(), "disc_offset_x", p.disc_offset_x, where);
+    put(g.get(), "disc_offset_y", p.disc_offset_y, where);
+    put(g.get(), "disc_x", p.disc_x, where);
+    put(g.get(), "disc_y", p.disc_y, where);
+  }
+  {
+    Handle g = hdf5::create_group(file, "pairs", where);
+    const PairContacts &c = s.pairs;
+    put(g.get(), "disc_i", c.disc_i, where);
+    put(g.get(), "disc_j", c.disc_j, where);
+    put_states(g.get(), c.state, where);
+    put(g.get(), "force_x", c.force_x, where);
+    put(g.get(), "force_y", c.force_y, where);
+    put(g.get(), "torque_i", c.torque_i, where);
+    put(g.get(), "torque_j", c.torque_j, where);
+    put(g.get(), "elastic_normal_force", c.elastic_normal_force, where);
+    put(g.get(), "friction_work", c.friction_work, where);
+    put(g.get(), "viscous_work", c.viscous_work, where);
+  }
+  {
+    Handle g = hdf5::create_group(file, "walls", where);
+    put_attr<std::uint64_t>(g.get(), "count", s.walls.size(), where);
+    for (std::size_t w = 0; w < s.walls.size(); ++w)
+      {
+        Handle one = hdf5::create_group(g.get(), numbered("wall", w), where);
+        put_wall(one.get(), s.walls[w], where);
+      }
+  }
+  {
+    Handle g = hdf5::create_group(file, "wall_contacts", where);
+    put_attr<std::uint64_t>(g.get(), "count", s.wall_contacts.size(), where);
+    for (std::size_t w = 0; w < s.wall_contacts.size(); ++w)
+      {
+        const WallContacts &c = s.wall_contacts[w];
+        Handle one = hdf5::create_group(g.get(), numbered("wall", w), where);
+        put(one.get(), "disc", c.disc, where);
+        put_states(one.get(), c.state, where);
+        put(one.get(), "force_x", c.force_x, where);
+        put(one.get(), "force_y", c.force_y, where);
+        put(one.get(), "elastic_normal_force", c.elastic_normal_force, where);
+        put(one.get(), "friction_work", c.friction_work, where);
+        put(one.get(), "viscous_work", c.viscous_work, where);
+      }
+  }
+  {
+    Handle g = hdf5::create_group(file, "verlet", where);
+    put(g.get(), "disc_x_at_rebuild", s.disc_x_at_rebuild, where);
+    put(g.get(), "disc_y_at_rebuild", s.disc_y_at_rebuild, where);
+    put(g.get(), "wall_start_at_rebuild", s.wall_start_at_rebuild, where);
+  }
+  put(file, "wall_force_previous", s.wall_force_previous, where);
+  {
+    Handle g = hdf5::create_group(file, "damping", where);
+    put(g.get(), "fx", s.damping_fx, where);
+    put(g.get(), "fy", s.damping_fy, where);
+    put(g.get(), "torque", s.damping_torque, where);
+  }
+}
+
+/// Flushes a file (or directory) to the disk. A directory that cannot be opened is skipped
+/// (`required` false): some file systems do not allow it.
+void sync_to_disk(const std::filesystem::path &path, bool required, const std::string &where)
+{
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0)
+    {
+      if (required)
+        fail(where, "cannot open '" + path.string() + "' to flush it: " + std::strerror(errno));
+      return;
+    }
+  const int status = ::fsync(fd);
+  const int error = errno;
+  ::close(fd);
+  if (status != 0 && required)
+    fail(where, "flushing '" + path.string() + "' to the disk failed: " + std::strerror(error));
+}
+
+// ---- reading ----------------------------------------------------------------------------------------
+
+template <typename T>
+T get_attr(hid_t parent, const char *name, const std::string &where)
+{
+  T value{};
+  hdf5::read_attribute(parent, name, Type<T>::memory(), &value, where);
+  return value;
+}
+
+/// Reads a dataset of any number of rows and `columns` columns (one dimension if columns == 1)
+/// whose stored type is of the class and size of T.
+template <typename T>
+std::vector<T> get(hid_t parent, const char *name, const std::string &where, std::size_t columns = 1)
+{
+  const std::string what = std::string("dataset '") + name + "'";
+  Handle set(H5Dopen2(parent, name, H5P_DEFAULT), H5Dclose, where, "opening " + what);
+  Handle type(H5Dget_type(set.get()), H5Tclose, where, "reading the type of " + what);
+  if (H5Tget_class(type.get()) != Type<T>::type_class || H5Tget_size(type.get()) != sizeof(T))
+    fail(where, what + " has an unexpected type");
+  const std::vector<hsize_t> dims = hdf5::dataset_shape(set.get(), where, what);
+  if (dims.size() != (columns > 1 ? 2u : 1u) || (columns > 1 && dims[1] != columns))
+    fail(where, what + " has an unexpected shape");
+  std::vector<T> values(static_cast<std::size_t>(dims[0]) * columns);
+  if (!values.empty())
+    check(H5Dread(set.get(), Type<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), where,
+          "reading " + what);
+  return values;
+}
+
+std::vector<Vec2> get_vec2s(hid_t parent, const char *name, const std::string &where)
+{
+  const std::vector<double> flat = get<double>(parent, name, where, 2);
+  std::vector<Vec2> values(flat.size() / 2);
+  for (std::size_t k = 0; k < values.size(); ++k)
+    values[k] = Vec2(flat[2 * k], flat[2 * k + 1]);
+  return values;
+}
+
+Vec2 get_vec2(hid_t parent, const char *name, const std::string &where)
+{
+  const std::vector<double> v = get<double>(parent, name, where);
+  if (v.size() != 2)
+    fail(where, std::string("dataset '") + name + "' does not hold 2 values");
+  return Vec2(v[0], v[1]);
+}
+
+bool get_bool(hid_t parent, const char *name, const std::string &where)
+{
+  const std::uint8_t b = get_attr<std::uint8_t>(parent, name, where);
+  if (b > 1)
+    fail(where, std::string("attribute '") + name + "' is not 0 or 1");
+  return b == 1;
+}
+
+std::vector<ContactState> get_states(hid_t parent, const std::string &where)
+{
+  const std::vector<double> tangential_force = get<double>(parent, "tangential_force", where);
+  const std::vector<std::uint8_t> bonded = get<std::uint8_t>(parent, "bonded", where);
+  const std::vector<std::uint8_t> touching = get<std::uint8_t>(parent, "touching", where);
+  const std::vector<double> dashpot_force = get<double>(parent, "dashpot_force", where);
+  if (bonded.size() != tangential_force.size() || touching.size() != tangential_force.size() ||
+      dashpot_force.size() != tangential_force.size())
+    fail(where, "contact states of different lengths");
+  std::vector<ContactState> states(tangential_force.size());
+  for (std::size_t q = 0; q < states.size(); ++q)
+    {
+      if (bonded[q] > 1 || touching[q] > 1)
+        fail(where, "a contact state flag is not 0 or 1");
+      states[q].tangential_force = tangential_force[q];
+      states[q].bonded = bonded[q] == 1;
+      states[q].touching = touching[q] == 1;
+      states[q].dashpot_force = dashpot_force[q];
+    }
+  return states;
+}
+
+ContactParameters get_law(hid_t parent, const char *name, const std::string &where)
+{
+  ContactParameters c;
+  Handle law = hdf5::open_group(parent, name, where);
+  c.normal_stiffness = get_attr<double>(law.get(), "normal_stiffness", where);
+  c.shear_stiffness = get_attr<double>(law.get(), "shear_stiffness", where);
+  c.friction_angle_deg = get_attr<double>(law.get(), "friction_angle_deg", where);
+  c.shear_strength = get_attr<double>(law.get(), "shear_strength", where);
+  c.tensile_strength = get_attr<double>(law.get(), "tensile_strength", where);
+  c.restitution = get_attr<double>(law.get(), "restitution", where);
+  c.bond_new_contacts = get_bool(law.get(), "bond_new_contacts", where);
+  return c;
+}
+
+Wall get_wall(hid_t group, const std::string &where)
+{
+  const ContactParameters c = get_law(group, "law", where);
+  const std::string name = hdf5::read_string_attribute(group, "name", where);
+  LinearContactLaw law;
+  try
+    {
+      law = LinearContactLaw(c);
+    }
+  catch (const std::invalid_argument &e)
+    {
+      fail(where, "wall '" + name + "': " + e.what());
+    }
+  Wall wall(name, get_vec2(group, "start", where), get_vec2(group, "end", where), law);
+  const std::string control = hdf5::read_string_attribute(group, "control", where);
+  if (control == control_name(WallControl::servo_stress))
+    wall.control = WallControl::servo_stress;
+  else if (control == control_name(WallControl::prescribed_velocity))
+    wall.control = WallControl::prescribed_velocity;
+  else
+    fail(where, "wall '" + name + "' has an unknown control '" + control + "'");
+  wall.velocity = get_vec2(group, "velocity", where);
+  wall.servo.target_stress = get_attr<double>(group, "servo_target_stress", where);
+  wall.servo.relaxation = get_attr<double>(group, "servo_relaxation", where);
+  wall.servo.max_speed = get_attr<double>(group, "servo_max_speed", where);
+  wall.force_from_particles = get_vec2(group, "force_from_particles", where);
+  wall.n_contacts = static_cast<std::size_t>(get_attr<std::uint64_t>(group, "n_contacts", where));
+  wall.loaded_length = get_attr<double>(group, "loaded_length", where);
+  return wall;
+}
+
+std::size_t get_count(hid_t group, const std::string &where)
+{
+  const std::uint64_t count = get_attr<std::uint64_t>(group, "count", where);
+  if (count > 1000000)
+    fail(where, "implausible count " + std::to_string(count));
+  return static_cast<std::size_t>(count);
+}
+
+/// Lengths and indices that the step loop relies on; a damaged or foreign file fails here rather
+/// than by reading out of bounds later.
+void check_consistency(const DemSystemState &s, const std::string &where)
+{
+  const ParticleSet &p = s.particles;
+  const std::size_t nb = p.x.size(), nd = p.disc_radius.size();
+  const auto require = [&](bool condition, const std::string &what) {
+    if (!condition)
+      fail(where, "inconsistent content: " + what);
+  };
+  for (std::size_t size : {p.body_id.size(), p.y.size(), p.rotation.size(), p.vx.size(), p.vy.size(),
+                           p.omega.size(), p.fx.size(), p.fy.size(), p.torque.size(), p.mass.size(),
+                           p.inertia.size(), p.inverse_mass.size(), p.inverse_inertia.size(),
+                           p.first_disc.size(), p.n_discs.size(), s.damping_fx.size(), s.damping_fy.size(),
+                           s.damping_torque.size()})
+    require(size == nb, "body arrays of different lengths");
+  for (std::size_t size : {p.disc_body.size(), p.disc_offset_x.size(), p.disc_offset_y.size(), p.disc_x.size(),
+                           p.disc_y.size()})
+    require(size == nd, "disc arrays of different lengths");
+  for (std::size_t b = 0; b < nb; ++b)
+    require(std::uint64_t(p.first_disc[b]) + p.n_discs[b] <= nd, "a body's discs are out of range");
+  for (std::uint32_t b : p.disc_body)
+    require(b < nb, "a disc's body is out of range");
+  if (!s.rebuild_needed)
+    require(s.disc_x_at_rebuild.size() == nd && s.disc_y_at_rebuild.size() == nd &&
+              s.wall_start_at_rebuild.size() == s.walls.size(),
+            "Verlet list reference positions of the wrong length");
+
+  const PairContacts &c = s.pairs;
+  const std::size_t n = c.size();
+  for (std::size_t size : {c.disc_j.size(), c.state.size(), c.force_x.size(), c.force_y.size(),
+                           c.torque_i.size(), c.torque_j.size(), c.elastic_normal_force.size(),
+                           c.friction_work.size(), c.viscous_work.size()})
+    require(size == n, "pair contact arrays of different lengths");
+  for (std::size_t q = 0; q < n; ++q)
+    require(c.disc_i[q] < c.disc_j[q] && c.disc_j[q] < nd, "a pair contact's discs are out of range");
+
+  require(s.wall_contacts.size() == s.walls.size() && s.wall_force_previous.size() == s.walls.size(),
+          "per-wall arrays of different lengths");
+  for (const WallContacts &w : s.wall_contacts)
+    {
+      const std::size_t m = w.disc.size();
+      for (std::size_t size : {w.state.size(), w.force_x.size(), w.force_y.size(), w.elastic_normal_force.size(),
+                               w.friction_work.size(), w.viscous_work.size()})
+        require(size == m, "wall contact arrays of different lengths");
+      for (std::uint32_t d : w.disc)
+        require(d < nd, "a wall contact's disc is out of range");
+    }
+}
+
+DemSystemState get_everything(hid_t file, const std::string &where)
+{
+  DemSystemState s;
+  s.time = get_attr<double>(file, "time", where);
+  s.time_step = get_attr<double>(file, "time_step", where);
+  s.skin = get_attr<double>(file, "skin", where);
+  s.radius_growth_since_rebuild = get_attr<double>(file, "radius_growth_since_rebuild", where);
+  s.particle_contact = get_law(file, "particle_law", where);
+  s.step_count = get_attr<std::uint64_t>(file, "step_count", where);
+  s.n_rebuilds = get_attr<std::uint64_t>(file, "n_rebuilds", where);
+  s.n_broken_bonds = get_attr<std::uint64_t>(file, "n_broken_bonds", where);
+  s.rebuild_needed = get_bool(file, "rebuild_needed", where);
+  {
+    Handle g = hdf5::open_group(file, "energy", where);
+    EnergyBudget &e = s.accumulated;
+    e.kinetic = get_attr<double>(g.get(), "kinetic", where);
+    e.gravitational = get_attr<double>(g.get(), "gravitational", where);
+    e.elastic = get_attr<double>(g.get(), "elastic", where);
+    e.friction_dissipated = get_attr<double>(g.get(), "friction_dissipated", where);
+    e.viscous_dissipated = get_attr<double>(g.get(), "viscous_dissipated", where);
+    e.local_damping_dissipated = get_attr<double>(g.get(), "local_damping_dissipated", where);
+    e.boundary_work = get_attr<double>(g.get(), "boundary_work", where);
+  }
+  {
+    Handle g = hdf5::open_group(file, "particles", where);
+    ParticleSet &p = s.particles;
+    p.body_id = get<std::int64_t>(g.get(), "body_id", where);
+    p.x = get<double>(g.get(), "x", where);
+    p.y = get<double>(g.get(), "y", where);
+    p.rotation = get<double>(g.get(), "rotation", where);
+    p.vx = get<double>(g.get(), "vx", where);
+    p.vy = get<double>(g.get(), "vy", where);
+    p.omega = get<double>(g.get(), "omega", where);
+    p.fx = get<double>(g.get(), "fx", where);
+    p.fy = get<double>(g.get(), "fy", where);
+    p.torque = get<double>(g.get(), "torque", where);
+    p.mass = get<double>(g.get(), "mass", where);
+    p.inertia = get<double>(g.get(), "inertia", where);
+    p.inverse_mass = get<double>(g.get(), "inverse_mass", where);
+    p.inverse_inertia = get<double>(g.get(), "inverse_inertia", where);
+    p.first_disc = get<std::uint32_t>(g.get(), "first_disc", where);
+    p.n_discs = get<std::uint32_t>(g.get(), "n_discs", where);
+    p.disc_body = get<std::uint32_t>(g.get(), "disc_body", where);
+    p.disc_radius = get<double>(g.get(), "disc_radius", where);
+    p.disc_offset_x = get<double>(g.get(), "disc_offset_x", where);
+    p.disc_offset_y = get<double>(g.get(), "disc_offset_y", where);
+    p.disc_x = get<double>(g.get(), "disc_x", where);
+    p.disc_y = get<double>(g.get(), "disc_y", where);
+  }
+  {
+    Handle g = hdf5::open_group(file, "pairs", where);
+    PairContacts &c = s.pairs;
+    c.disc_i = get<std::uint32_t>(g.get(), "disc_i", where);
+    c.disc_j = get<std::uint32_t>(g.get(), "disc_j", where);
+    c.state = get_states(g.get(), where);
+    c.force_x = get<double>(g.get(), "force_x", where);
+    c.force_y = get<double>(g.get(), "force_y", where);
+    c.torque_i = get<double>(g.get(), "torque_i", where);
+    c.torque_j = get<double>(g.get(), "torque_j", where);
+    c.elastic_normal_force = get<double>(g.get(), "elastic_normal_force", where);
+    c.friction_work = get<double>(g.get(), "friction_work", where);
+    c.viscous_work = get<double>(g.get(), "viscous_work", where);
+  }
+  {
+    Handle g = hdf5::open_group(file, "walls", where);
+    const std::size_t count = get_count(g.get(), where);
+    for (std::size_t w = 0; w < count; ++w)
+      {
+        Handle one = hdf5::open_group(g.get(), numbered("wall", w), where);
+        s.walls.push_back(get_wall(one.get(), where));
+      }
+  }
+  {
+    Handle g = hdf5::open_group(file, "wall_contacts", where);
+    const std::size_t count = get_count(g.get(), where);
+    s.wall_contacts.resize(count);
+    for (std::size_t w = 0; w < count; ++w)
+      {
+        WallContacts &c = s.wall_contacts[w];
+        Handle one = hdf5::open_group(g.get(), numbered("wall", w), where);
+        c.disc = get<std::uint32_t>(one.get(), "disc", where);
+        c.state = get_states(one.get(), where);
+        c.force_x = get<double>(one.get(), "force_x", where);
+        c.force_y = get<double>(one.get(), "force_y", where);
+        c.elastic_normal_force = get<double>(one.get(), "elastic_normal_force", where);
+        c.friction_work = get<double>(one.get(), "friction_work", where);
+        c.viscous_work = get<double>(one.get(), "viscous_work", where);
+      }
+  }
+  {
+    Handle g = hdf5::open_group(file, "verlet", where);
+    s.disc_x_at_rebuild = get<double>(g.get(), "disc_x_at_rebuild", where);
+    s.disc_y_at_rebuild = get<double>(g.get(), "disc_y_at_rebuild", where);
+    s.wall_start_at_rebuild = get_vec2s(g.get(), "wall_start_at_rebuild", where);
+  }
+  s.wall_force_previous = get_vec2s(file, "wall_force_previous", where);
+  {
+    Handle g = hdf5::open_group(file, "damping", where);
+    s.damping_fx = get<double>(g.get(), "fx", where);
+    s.damping_fy = get<double>(g.get(), "fy", where);
+    s.damping_torque = get<double>(g.get(), "torque", where);
+  }
+  check_consistency(s, where);
+  return s;
+}
+} // namespace
+
+void write_checkpoint(const DemSystemState &state, const std::filesystem::path &file)
+{
+  const std::string where = describe(file);
+  std::filesystem::path temporary = file;
+  temporary += ".tmp";
+  try
+    {
+      {
+        hdf5::SilenceErrors silence;
+        Handle fapl = hdf5::file_access(where);
+        Handle h5(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose, where,
+                  "creating '" + temporary.string() + "'");
+        put_everything(h5.get(), state, where);
+        h5.close(where, "closing '" + temporary.string() + "'");
+      }
+      sync_to_disk(temporary, true, where);
+    }
+  catch (...)
+    {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw;
+    }
+  std::error_code error;
+  std::filesystem::rename(temporary, file, error);
+  if (error)
+    fail(where, "cannot replace it with '" + temporary.string() + "': " + error.message());
+  // Make the rename itself durable.
+  const std::filesystem::path directory = file.parent_path();
+  sync_to_disk(directory.empty() ? std::filesystem::path(".") : directory, false, where);
+}
+
+DemSystemState read_checkpoint(const std::filesystem::path &file)
+{
+  const std::string where = describe(file);
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error))
+    fail(where, "does not exist or is not a file");
+  hdf5::SilenceErrors silence;
+  Handle fapl = hdf5::file_access(where);
+#if H5_VERSION_GE(1, 12, 0)
+  const htri_t is_hdf5 = H5Fis_accessible(file.c_str(), fapl.get());
+#else
+  const htri_t is_hdf5 = H5Fis_hdf5(file.c_str());
+#endif
+  if (is_hdf5 <= 0)
+    fail(where, "is not a readable HDF5 file (damaged or not a checkpoint)");
+  Handle h5(H5Fopen(file.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose, where, "opening the file");
+  if (H5Aexists(h5.get(), "format") <= 0 || H5Aexists(h5.get(), "format_version") <= 0 ||
+      hdf5::read_string_attribute(h5.get(), "format", where) != format_name)
+    fail(where, "is not a geohybrid DEM checkpoint");
+  const std::uint32_t version = get_attr<std::uint32_t>(h5.get(), "format_version", where);
+  if (version != checkpoint_format_version)
+    fail(where, "has checkpoint format version " + std::to_string(version) + "; this program reads version " +
+                  std::to_string(checkpoint_format_version));
+  DemSystemState state = get_everything(h5.get(), where);
+  h5.close(where, "closing the file");
+  return state;
+}
+} // namespace geohybrid::dem

@@ -1,0 +1,50 @@
+#pragma once
+// Checkpoints of a DemSystem: its complete DemSystemState in one HDF5 file, so that a long run can
+// be continued exactly (bit for bit) after a stop or a crash. The construction inputs (particle
+// contact law, DemSettings) are not stored: the reader builds a DemSystem from the same input,
+// then calls DemSystem::restore_state(read_checkpoint(file)). Walls are stored whole (geometry,
+// contact law, control), so the saved walls replace those the system was built with.
+//
+// HDF5 layout, format version 1 (doubles as IEEE 754 binary64, so values round-trip exactly;
+// booleans as uint8; "n x 2" datasets hold (x, y) rows):
+//
+//   /                 attributes: format = "geohybrid DEM checkpoint", format_version (uint32),
+//                     time, time_step, skin (double), step_count, n_rebuilds, n_broken_bonds
+//                     (uint64), rebuild_needed (uint8)
+//   /energy           attributes: the EnergyBudget terms (double), by their C++ names
+//   /particles/*      every ParticleSet array under its C++ name (body_id int64; first_disc,
+//                     n_discs, disc_body uint32; the others double)
+//   /pairs/*          disc_i, disc_j (uint32); the ContactState fields tangential_force,
+//                     bonded, touching, dashpot_force; force_x, force_y, torque_i, torque_j,
+//                     elastic_normal_force, friction_work, viscous_work
+//   /walls            attribute count; /walls/wall_NNNNNN per wall: attributes name, control
+//                     ("prescribed_velocity" or "servo_stress"), n_contacts (uint64),
+//                     servo_target_stress, servo_relaxation, servo_max_speed; datasets start,
+//                     end, velocity, force_from_particles (2 doubles); group law with the
+//                     ContactParameters as attributes (bond_new_contacts uint8)
+//   /wall_contacts    attribute count; /wall_contacts/wall_NNNNNN: disc (uint32), the ContactState
+//                     fields, force_x, force_y, elastic_normal_force, friction_work, viscous_work
+//   /verlet           disc_x_at_rebuild, disc_y_at_rebuild, wall_start_at_rebuild (n x 2)
+//   /wall_force_previous   n x 2
+//   /damping          fx, fy, torque
+#include "dem_system.h"
+
+#include <cstdint>
+#include <filesystem>
+
+namespace geohybrid::dem
+{
+/// Version of the layout above; read_checkpoint() refuses any other.
+constexpr std::uint32_t checkpoint_format_version = 1;
+
+/// Writes `state` to `file` through FILE.tmp in the same directory: the temporary file is
+/// written, flushed to the disk (fsync) and renamed over `file`, so a crash at any moment leaves
+/// either the previous checkpoint or the new one, never a partial file. Throws
+/// std::runtime_error naming the file on failure (the previous checkpoint is then untouched).
+void write_checkpoint(const DemSystemState &state, const std::filesystem::path &file);
+
+/// Reads a checkpoint written by write_checkpoint(). Throws std::runtime_error naming the file if
+/// it is missing, not a DEM checkpoint, of another format version, damaged, or inconsistent
+/// (array lengths or indices that do not fit together).
+DemSystemState read_checkpoint(const std::filesystem::path &file);
+} // namespace geohybrid::dem
