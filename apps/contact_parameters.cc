@@ -33,7 +33,8 @@ void declare_contact_parameters(dealii::ParameterHandler &prm, const dem::Contac
   prm.declare_entry("restitution coefficient", number(d.restitution), Double(1e-6, 1.0),
                     "Normal coefficient of restitution setting a viscous dashpot; 1 = none [-]");
   prm.declare_entry("bond new contacts", d.bond_new_contacts ? "true" : "false", Bool(),
-                    "Whether a contact starts bonded (carrying a_s and a_n) when it forms [-]");
+                    "Whether a contact starts bonded (carrying a_s and a_n) when it forms, as in a cementing "
+                    "soil; otherwise only the contacts touching at the start are bonded [-]");
 }
 
 dem::ContactParameters parse_contact_parameters(dealii::ParameterHandler &prm, const std::string &where)

@@ -56,8 +56,9 @@ void declare_dem_parameters(ParameterHandler &prm)
                     "Largest radius of a generated (large) disc [m]");
   prm.declare_entry("cluster diameter ratio", "0.9", Patterns::Double(0.1, 1.0),
                     "Small over large disc diameter in a cluster (0.9 in the reference paper) [-]");
-  prm.declare_entry("cluster centre spacing", "0.5", Patterns::Double(0.01, 0.95),
-                    "Distance between a cluster's disc centres over the large diameter [-]");
+  prm.declare_entry("cluster centre spacing", "0.95", Patterns::Double(0.01, 0.95),
+                    "Distance between a cluster's disc centres over the large diameter; 0.95 = the two "
+                    "discs (d and 0.9 d) touch [-]");
   prm.declare_entry("seed", "1", Patterns::Integer(0), "Seed of the random sizes and orientations [-]");
   prm.leave_subsection();
 
@@ -226,11 +227,12 @@ int run_dem_command(const std::string &input_file, bool resume)
     try
       {
         dem::DemSystem s(std::move(particles), particle_law, settings);
-        s.add_wall(dem::Wall("floor", dem::Vec2(width, 0.0), dem::Vec2(0.0, 0.0), wall_law));
-        s.add_wall(dem::Wall("left", dem::Vec2(0.0, 0.0), dem::Vec2(0.0, height), wall_law));
-        s.add_wall(dem::Wall("right", dem::Vec2(width, height), dem::Vec2(width, 0.0), wall_law));
+        // Active side on the left of start -> end (dem/wall.h): the box is walked clockwise.
+        s.add_wall(dem::Wall("floor", dem::Vec2(0.0, 0.0), dem::Vec2(width, 0.0), wall_law));
+        s.add_wall(dem::Wall("left", dem::Vec2(0.0, height), dem::Vec2(0.0, 0.0), wall_law));
+        s.add_wall(dem::Wall("right", dem::Vec2(width, 0.0), dem::Vec2(width, height), wall_law));
         if (top_wall)
-          s.add_wall(dem::Wall("top", dem::Vec2(0.0, height), dem::Vec2(width, height), wall_law));
+          s.add_wall(dem::Wall("top", dem::Vec2(width, height), dem::Vec2(0.0, height), wall_law));
         for (std::size_t k = 0; k < extra_walls.size(); ++k)
           {
             const auto &w = extra_walls[k];
@@ -269,6 +271,8 @@ int run_dem_command(const std::string &input_file, bool resume)
                                       e.what());
         }
     }
+  else if (particle_law.parameters().shear_strength > 0.0 || particle_law.parameters().tensile_strength > 0.0)
+    system.bond_touching_contacts(); // PFC-style contact bonds on the initial contacts
   const std::uint64_t first_step = system.step_count(); // 0, or the checkpoint's step
   const double resumed_from_time = system.time();
   const std::uint64_t n_steps = static_cast<std::uint64_t>(std::ceil(end_time / system.time_step() - 1e-9));

@@ -20,7 +20,11 @@ struct ContactParameters
   double shear_strength        = 0.0;    ///< a_s, carried while bonded [N/m]
   double tensile_strength      = 0.0;    ///< a_n, carried while bonded [N/m]
   double restitution           = 1.0;    ///< normal coefficient of restitution, 1 = no dashpot [-]
-  bool   bond_new_contacts     = true;   ///< a new contact starts bonded if a_s > 0 or a_n > 0
+  /// Whether a contact starts bonded when it forms (if a_s > 0 or a_n > 0), i.e. a cementing
+  /// soil. Off by default, as PFC's contact bonds: bonds are installed on the contacts touching at
+  /// a chosen moment (DemSystem::bond_touching_contacts), break when a strength is exceeded, and
+  /// stay broken. With it on, a pair that separates and touches again bonds anew.
+  bool   bond_new_contacts     = false;
 
   /// Throws std::invalid_argument naming `where` and the offending parameter.
   void validate(const std::string &where) const;

@@ -53,6 +53,9 @@ DemSystem::DemSystem(ParticleSet particles, const LinearContactLaw &particle_law
   damping_torque_.assign(nb, 0.0);
   body_scratch_.assign(nb, 0.0);
   particles_.update_disc_positions();
+  if (settings_.time_step <= 0.0 && !std::isfinite(critical_time_step()))
+    throw std::invalid_argument("DEM settings: no movable particle to set an automatic time step from; "
+                                "give 'time step' explicitly");
   set_time_step(settings_.time_step > 0.0 ? settings_.time_step : settings_.time_step_safety * critical_time_step());
 }
 
@@ -134,6 +137,7 @@ void DemSystem::set_particle_law(const LinearContactLaw &law)
 
 void DemSystem::bond_touching_contacts()
 {
+  initialise_forces(); // the contacts touching now are known only after a force evaluation
   for (ContactState &s : pairs_.state)
     if (s.touching)
       s.bonded = true;
@@ -149,19 +153,24 @@ void DemSystem::run_steps(std::uint64_t n)
     step();
 }
 
+void DemSystem::initialise_forces()
+{
+  if (forces_initialised_)
+    return;
+  // Forces at t = 0, so that the first half kick sees gravity and initial overlaps.
+  // A zero step length keeps the tangential springs and dissipation untouched.
+  const double dt = time_step_;
+  time_step_ = 0.0;
+  rebuild_if_needed();
+  compute_pair_forces();
+  gather_forces_and_kick();
+  time_step_ = dt;
+  forces_initialised_ = true;
+}
+
 void DemSystem::step()
 {
-  if (step_count_ == 0)
-    {
-      // Forces at t = 0, so that the first half kick sees gravity and initial overlaps.
-      // A zero step length keeps the tangential springs and dissipation untouched.
-      const double dt = time_step_;
-      time_step_ = 0.0;
-      rebuild_if_needed();
-      compute_pair_forces();
-      gather_forces_and_kick();
-      time_step_ = dt;
-    }
+  initialise_forces();
   kick_and_drift();
   move_walls();
   rebuild_if_needed();
@@ -537,6 +546,7 @@ void DemSystem::restore_state(DemSystemState s)
   n_rebuilds_ = s.n_rebuilds;
   n_broken_bonds_ = s.n_broken_bonds;
   rebuild_needed_ = s.rebuild_needed;
+  forces_initialised_ = s.step_count > 0;
   // The body adjacency is derived from the pair list; result arrays may be absent in a file.
   if (pairs_.force_x.size() != pairs_.size())
     pairs_.resize_results();

@@ -103,6 +103,10 @@ public:
   /// contact histories are kept. Throws if the current time step becomes unstable.
   void set_particle_law(const LinearContactLaw &law);
 
+  /// Evaluates the contact forces of the current configuration if not done yet (the first
+  /// step() does it otherwise); contacts, wall forces and stresses are then available.
+  void initialise_forces();
+
   /// Makes every contact that currently touches a bonded contact (used to glue packings).
   void bond_touching_contacts();
 
@@ -155,6 +159,7 @@ private:
   double skin_ = 0.0;
   std::uint64_t step_count_ = 0;
   bool rebuild_needed_ = true;
+  bool forces_initialised_ = false;
   std::uint64_t n_rebuilds_ = 0;
   std::uint64_t n_broken_bonds_ = 0;
 

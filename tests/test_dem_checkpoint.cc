@@ -53,6 +53,7 @@ ContactParameters contact(double friction_deg, double strength)
   c.restitution = 0.5;
   c.tensile_strength = strength;
   c.shear_strength = strength;
+  c.bond_new_contacts = true; // cementing: contacts bond as they form
   return c;
 }
 

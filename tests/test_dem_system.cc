@@ -156,6 +156,7 @@ TEST(EnergyBalance, ClosesWithBondBreakage)
   ContactParameters c = law(20.0, 0.5);
   c.tensile_strength = 30.0;
   c.shear_strength = 30.0;
+  c.bond_new_contacts = true; // cementing: contacts bond as they form
   const LinearContactLaw contact(c);
   DemSystem system(grid_sample(nx, ny, 0.5), contact, s);
   add_box(system, box_width, box_height, contact);
@@ -348,6 +349,7 @@ DemSystem deposition(int n_threads)
   ContactParameters c = law(20.0, 0.5);
   c.tensile_strength = 2.0;
   c.shear_strength = 2.0;
+  c.bond_new_contacts = true; // cementing: contacts bond as they form
   const LinearContactLaw contact(c);
   DemSystem system(grid_sample(n_x, n_y, 0.1, 10, 7, pitch, 0.92), contact, s);
   add_box(system, n_x * pitch * r_max, n_y * pitch * r_max, LinearContactLaw(law(20.0, 0.5)));
