@@ -31,21 +31,28 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
   curve.initial_porosity = 1.0 - total_solid_area(system.particles()) / (H0 * W0);
 
   std::vector<Wall> &walls = system.walls();
-  box.servo_sides(system, spec.confining_stress, true, 0.0, false, spec.servo_max_speed);
+  // The lateral walls must be able to follow the sample's dilation: allow them ten times V.
+  box.servo_sides(system, spec.confining_stress, true, 0.0, false, std::max(spec.servo_max_speed, 10.0 * speed));
   walls[box.bottom].control = WallControl::prescribed_velocity;
   walls[box.bottom].velocity = Vec2::Zero();
   walls[box.top].control = WallControl::prescribed_velocity;
   walls[box.top].velocity = Vec2(0.0, -speed);
 
+  // Stresses are averaged over each recording interval, as a load cell would: the force on a
+  // wall touched by a few dozen grains fluctuates from step to step.
+  double sum_axial = 0.0, sum_lateral = 0.0;
+  std::size_t n_summed = 0;
   const auto record = [&] {
     BiaxialPoint p;
     p.axial_strain = (H0 - box.height(system)) / H0;
     p.lateral_strain = (W0 - box.width(system)) / W0;
     p.volumetric_strain = p.axial_strain + p.lateral_strain;
-    p.axial_stress = box.vertical_stress(system);
-    p.lateral_stress = box.horizontal_stress(system);
+    p.axial_stress = n_summed ? sum_axial / n_summed : box.vertical_stress(system);
+    p.lateral_stress = n_summed ? sum_lateral / n_summed : box.horizontal_stress(system);
     p.deviatoric_stress = p.axial_stress - p.lateral_stress;
     curve.points.push_back(p);
+    sum_axial = sum_lateral = 0.0;
+    n_summed = 0;
   };
   record();
   double next_record = spec.record_interval;
@@ -53,6 +60,9 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
     {
       box.update_loaded_lengths(system);
       system.step();
+      sum_axial += box.vertical_stress(system);
+      sum_lateral += box.horizontal_stress(system);
+      ++n_summed;
       const double strain = (H0 - box.height(system)) / H0;
       if (strain >= next_record)
         {

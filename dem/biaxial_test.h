@@ -27,8 +27,8 @@ struct BiaxialPoint
   double axial_strain;       ///< (H0 - H) / H0
   double lateral_strain;     ///< (W0 - W) / W0
   double volumetric_strain;  ///< axial + lateral (2D), compression positive
-  double axial_stress;       ///< mean of the top and bottom wall stresses [Pa]
-  double lateral_stress;     ///< mean of the left and right wall stresses [Pa]
+  double axial_stress;       ///< top and bottom wall stresses, averaged since the last point [Pa]
+  double lateral_stress;     ///< left and right wall stresses, averaged since the last point [Pa]
   double deviatoric_stress;  ///< axial - lateral [Pa]
 };
 

@@ -30,8 +30,8 @@ constexpr const char *format_name = "geohybrid DEM checkpoint";
 #if defined(__x86_64__) && defined(__GLIBCXX__)
 static_assert(sizeof(ContactState) == 24, "ContactState changed: update the checkpoint");
 static_assert(sizeof(ContactParameters) == 56, "ContactParameters changed: update the checkpoint");
-static_assert(sizeof(WallServo) == 24, "WallServo changed: update the checkpoint");
-static_assert(sizeof(Wall) == 240, "Wall changed: update the checkpoint");
+static_assert(sizeof(WallServo) == 40, "WallServo changed: update the checkpoint");
+static_assert(sizeof(Wall) == 256, "Wall changed: update the checkpoint");
 static_assert(sizeof(ParticleSet) == 22 * sizeof(std::vector<double>), "ParticleSet changed: update the checkpoint");
 static_assert(sizeof(PairContacts) == 13 * sizeof(std::vector<double>), "PairContacts changed: update the checkpoint");
 static_assert(sizeof(WallContacts) == 7 * sizeof(std::vector<double>), "WallContacts changed: update the checkpoint");
@@ -166,6 +166,8 @@ void put_wall(hid_t group, const Wall &wall, const std::string &where)
   put_attr(group, "servo_target_stress", wall.servo.target_stress, where);
   put_attr(group, "servo_relaxation", wall.servo.relaxation, where);
   put_attr(group, "servo_max_speed", wall.servo.max_speed, where);
+  put_attr(group, "servo_integral_gain", wall.servo.integral_gain, where);
+  put_attr(group, "servo_integral", wall.servo.integral, where);
   put(group, "start", wall.start, where);
   put(group, "end", wall.end, where);
   put(group, "velocity", wall.velocity, where);
@@ -412,6 +414,8 @@ Wall get_wall(hid_t group, const std::string &where)
   wall.servo.target_stress = get_attr<double>(group, "servo_target_stress", where);
   wall.servo.relaxation = get_attr<double>(group, "servo_relaxation", where);
   wall.servo.max_speed = get_attr<double>(group, "servo_max_speed", where);
+  wall.servo.integral_gain = get_attr<double>(group, "servo_integral_gain", where);
+  wall.servo.integral = get_attr<double>(group, "servo_integral", where);
   wall.force_from_particles = get_vec2(group, "force_from_particles", where);
   wall.n_contacts = static_cast<std::size_t>(get_attr<std::uint64_t>(group, "n_contacts", where));
   wall.loaded_length = get_attr<double>(group, "loaded_length", where);

@@ -216,12 +216,16 @@ void DemSystem::move_walls()
       if (wall.control == WallControl::servo_stress)
         {
           // PFC's servo: retreat by the distance that would remove a fraction `relaxation` of the
-          // stress error, given the contacts' stiffness: v = alpha (sigma - sigma_0) L / (N kn dt).
-          const double error = wall.normal_stress() - wall.servo.target_stress;
+          // stress error, given the contacts' stiffness: v = alpha (sigma - sigma_0) L / (N kn dt),
+          // plus an integral term so that a steadily moving wall holds its stress without lag.
+          WallServo &servo = wall.servo;
+          const double error = wall.normal_stress() - servo.target_stress;
           const double n_contacts = std::max<double>(1.0, static_cast<double>(wall.n_contacts));
-          double speed = wall.servo.relaxation * error * wall.length() /
-                         (n_contacts * wall.law.normal_stiffness() * dt);
-          speed = std::clamp(speed, -wall.servo.max_speed, wall.servo.max_speed);
+          const double gain = servo.relaxation * wall.stress_length() / (n_contacts * wall.law.normal_stiffness() * dt);
+          double speed = gain * (error + servo.integral_gain * (servo.integral + error));
+          if (std::abs(speed) < servo.max_speed && wall.n_contacts > 0)
+            servo.integral += error; // no wind-up while capped or out of contact
+          speed = std::clamp(speed, -servo.max_speed, servo.max_speed);
           wall.velocity = -speed * wall.normal();
         }
       wall.translate(dt * wall.velocity);

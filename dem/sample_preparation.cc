@@ -128,6 +128,18 @@ RedfSample make_redf_sample(const RedfSpec &s, const std::function<void(double)>
   // Start at a solid fraction of 0.45 (or less): random placement succeeds easily there.
   const double initial_fraction = std::min(0.45, 0.75 * (1.0 - s.target_porosity));
   const double initial_scale = final_scale * std::sqrt(initial_fraction / (1.0 - s.target_porosity));
+  // A sample must be many particles across: refuse one whose largest particle would span more
+  // than a fifth of the box's smaller side.
+  const double largest_extent = final_scale * u.front() *
+                                (s.shape == ParticleShape::disc ? 2.0 : 1.0 + 2.0 * s.cluster_spacing + s.cluster_diameter_ratio);
+  if (largest_extent > 0.2 * std::min(s.width, s.height))
+    {
+      std::ostringstream message;
+      message << "REDF: " << s.n_particles << " particles filling a " << s.width << " m x " << s.height
+              << " m box at porosity " << s.target_porosity << " would be up to " << largest_extent
+              << " m across, more than a fifth of the box; use more particles or a larger box";
+      throw std::invalid_argument(message.str());
+    }
   std::vector<double> radii(u.size());
   for (std::size_t k = 0; k < u.size(); ++k)
     radii[k] = initial_scale * u[k];

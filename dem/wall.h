@@ -20,6 +20,11 @@ struct WallServo
   double target_stress = 0.0;  ///< compressive normal stress to hold [Pa]
   double relaxation    = 0.5;  ///< fraction of the stress error removed per step (PFC's alpha)
   double max_speed     = 1.0;  ///< cap on the servo speed [m/s]
+  /// Integral action: fraction of the accumulated error fed back per step. A purely
+  /// proportional servo lags a wall that must keep moving (a dilating sample) by a constant
+  /// error; the integral removes it. 0 = PFC's proportional servo.
+  double integral_gain = 0.01;
+  double integral      = 0.0;  ///< accumulated stress error (state) [Pa]
 };
 
 struct Wall
@@ -45,10 +50,9 @@ struct Wall
   Vec2 normal() const { return perp(end - start).normalized(); }
   /// Compressive normal stress on the wall: normal force from the particles over its loaded
   /// length [Pa].
-  double normal_stress() const
-  {
-    return -force_from_particles.dot(normal()) / (loaded_length > 0.0 ? loaded_length : length());
-  }
+  double normal_stress() const { return -force_from_particles.dot(normal()) / stress_length(); }
+  /// The length the normal force is spread over [m].
+  double stress_length() const { return loaded_length > 0.0 ? loaded_length : length(); }
   void translate(const Vec2 &d) { start += d; end += d; }
 };
 } // namespace geohybrid::dem

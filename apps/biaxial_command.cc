@@ -1,0 +1,221 @@
+// `geohybrid biaxial`: the calibration test of the reference paper (section 4.2). For each
+// confining stress a sample is made by REDF at that stress (same seed, so the same grains), then
+// compressed by the top wall at a speed giving a small inertial number while the lateral walls
+// hold the confining stress. Outputs:
+//   biaxial_<sigma>kPa.csv  axial strain, deviatoric stress, volumetric strain, wall stresses
+//   biaxial.png             deviator and volumetric strain against axial strain
+//   summary.json            peak/residual friction angle, cohesion, E, E50, Poisson ratio, psi
+#include "biaxial_command.h"
+
+#include "contact_parameters.h"
+#include "plot.h"
+#include "run_directory.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+namespace geohybrid::apps
+{
+using dealii::ParameterHandler;
+namespace Patterns = dealii::Patterns;
+
+void declare_biaxial_parameters(ParameterHandler &prm)
+{
+  prm.declare_entry("output directory", "output/biaxial", Patterns::Anything(),
+                    "Directory for all results, created if needed, relative to the working directory");
+  prm.declare_entry("threads", "2", Patterns::Integer(1, 256), "Number of threads [-]");
+
+  prm.enter_subsection("Sample");
+  prm.declare_entry("number of particles", "4000", Patterns::Integer(1), "Particles in the sample [-]");
+  prm.declare_entry("width", "0.2", Patterns::Double(1e-6), "Width of the sample [m]");
+  prm.declare_entry("height", "0.4", Patterns::Double(1e-6), "Height of the sample [m]");
+  prm.declare_entry("shape", "two-disc cluster", Patterns::Selection("disc|two-disc cluster"),
+                    "Particle shape; the paper uses clusters of two discs of diameters d and 0.9 d");
+  prm.declare_entry("size ratio", "0.5", Patterns::Double(0.05, 1.0),
+                    "Smallest over largest particle size (uniform distribution); the sizes are scaled so "
+                    "the particles fill the sample at the target porosity [-]");
+  prm.declare_entry("cluster diameter ratio", "0.9", Patterns::Double(0.1, 1.0),
+                    "Small over large disc diameter in a cluster [-]");
+  prm.declare_entry("cluster centre spacing", "0.95", Patterns::Double(0.01, 0.95),
+                    "Distance between a cluster's disc centres over the large diameter; 0.95 = touching [-]");
+  prm.declare_entry("density", "2650", Patterns::Double(1e-9), "Solid density [kg/m^3]");
+  prm.declare_entry("target porosity", "0.2", Patterns::Double(0.0, 1.0), "2D porosity of the sample (Table 5) [-]");
+  prm.declare_entry("porosity tolerance", "0.005", Patterns::Double(1e-6, 0.1), "Accepted porosity error [-]");
+  prm.declare_entry("initial growth friction", "-1", Patterns::Double(-1.0, 89.0),
+                    "Friction angle at the start of REDF growth; -1 = the material's [deg]");
+  prm.declare_entry("seed", "1", Patterns::Integer(0), "Seed of the random sample [-]");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Particle contact");
+  dem::ContactParameters table5;
+  table5.normal_stiffness = 7e7;
+  table5.shear_stiffness = 3.5e7;
+  table5.friction_angle_deg = 10.0;
+  declare_contact_parameters(prm, table5);
+  prm.leave_subsection();
+  prm.enter_subsection("Wall contact");
+  dem::ContactParameters frictionless = table5;
+  frictionless.friction_angle_deg = 0.0; // "The four walls were non frictional"
+  declare_contact_parameters(prm, frictionless);
+  prm.leave_subsection();
+
+  prm.enter_subsection("Test");
+  prm.declare_entry("confining stresses", "10e3, 20e3, 50e3", Patterns::List(Patterns::Double(1.0), 1),
+                    "Lateral stresses sigma_0, one test each (the paper's triaxial tests: 10, 20, 50 kPa) [Pa]");
+  prm.declare_entry("top wall speed", "0", Patterns::Double(0.0),
+                    "Speed V of the top wall; 0 = chosen from the inertial number [m/s]");
+  prm.declare_entry("inertial number", "2e-4", Patterns::Double(1e-8, 1.0),
+                    "Target inertial number I = strain rate x d x sqrt(rho / sigma_0) when V is 0; "
+                    "quasi-static below 1e-3 [-]");
+  prm.declare_entry("final axial strain", "0.1", Patterns::Double(1e-4, 0.45), "End of the test [-]");
+  prm.declare_entry("record interval", "0.001", Patterns::Double(1e-6, 0.1),
+                    "Axial strain between recorded points [-]");
+  prm.leave_subsection();
+}
+
+BiaxialCampaign parse_biaxial_campaign(ParameterHandler &prm, const std::string &where)
+{
+  BiaxialCampaign c;
+  dem::RedfSpec &s = c.sample;
+  s.n_threads = prm.get_integer("threads");
+  prm.enter_subsection("Sample");
+  s.n_particles = static_cast<std::size_t>(prm.get_integer("number of particles"));
+  s.width = prm.get_double("width");
+  s.height = prm.get_double("height");
+  s.shape = prm.get("shape") == "disc" ? dem::ParticleShape::disc : dem::ParticleShape::two_disc_cluster;
+  s.size_ratio = prm.get_double("size ratio");
+  s.cluster_diameter_ratio = prm.get_double("cluster diameter ratio");
+  s.cluster_spacing = prm.get_double("cluster centre spacing");
+  s.density = prm.get_double("density");
+  s.target_porosity = prm.get_double("target porosity");
+  s.porosity_tolerance = prm.get_double("porosity tolerance");
+  s.initial_growth_friction_deg = prm.get_double("initial growth friction");
+  s.seed = static_cast<std::uint64_t>(prm.get_integer("seed"));
+  prm.leave_subsection();
+  if (!(s.target_porosity >= 0.05 && s.target_porosity <= 0.8))
+    throw std::invalid_argument(where + ": 'Sample/target porosity' = " + std::to_string(s.target_porosity) +
+                                " cannot be reached by a 2D assembly; use a value in [0.05, 0.8]");
+  prm.enter_subsection("Particle contact");
+  s.particle_contact = parse_contact_parameters(prm, where + ", subsection 'Particle contact'");
+  prm.leave_subsection();
+  prm.enter_subsection("Wall contact");
+  s.wall_contact = parse_contact_parameters(prm, where + ", subsection 'Wall contact'");
+  prm.leave_subsection();
+  prm.enter_subsection("Test");
+  for (const std::string &item : dealii::Utilities::split_string_list(prm.get("confining stresses"), ','))
+    c.confining_stresses.push_back(dealii::Utilities::string_to_double(item));
+  c.test.top_wall_speed = prm.get_double("top wall speed");
+  c.test.target_inertial_number = prm.get_double("inertial number");
+  c.test.final_axial_strain = prm.get_double("final axial strain");
+  c.test.record_interval = prm.get_double("record interval");
+  prm.leave_subsection();
+  if (c.test.record_interval * 10.0 > c.test.final_axial_strain)
+    throw std::invalid_argument(where + ": 'Test/record interval' must be at most a tenth of 'final axial strain'");
+  return c;
+}
+
+std::vector<dem::BiaxialCurve> run_biaxial_campaign(const BiaxialCampaign &campaign, bool show_progress)
+{
+  std::vector<dem::BiaxialCurve> curves;
+  for (const double sigma_0 : campaign.confining_stresses)
+    {
+      dem::RedfSpec spec = campaign.sample;
+      spec.target_stress = sigma_0;
+      const std::string label = "biaxial " + std::to_string(static_cast<int>(std::lround(sigma_0 / 1e3))) + " kPa";
+      ProgressReport sample_progress(label + ", REDF sample", 1.0);
+      dem::RedfSample sample =
+        dem::make_redf_sample(spec, show_progress ? std::function<void(double)>([&](double f) { sample_progress.update(f); })
+                                                  : std::function<void(double)>());
+      if (show_progress)
+        sample_progress.finish();
+      // Mean particle size for the inertial number: the diameter of a disc of the mean area.
+      const dem::ParticleSet &p = sample.system.particles();
+      const double mean_diameter = 2.0 * std::sqrt(dem::total_solid_area(p) / (dem::pi * p.n_bodies()));
+      dem::BiaxialSpec test = campaign.test;
+      test.confining_stress = sigma_0;
+      ProgressReport shear_progress(label + ", compression", 1.0);
+      dem::BiaxialCurve curve =
+        dem::run_biaxial_test(sample.system, sample.box, test, mean_diameter, spec.density,
+                              show_progress ? std::function<void(double)>([&](double f) { shear_progress.update(f); })
+                                            : std::function<void(double)>());
+      if (show_progress)
+        shear_progress.finish();
+      curve.initial_porosity = sample.result.porosity;
+      if (curve.inertial_number > 1e-3)
+        std::cerr << "warning: " << label << ": inertial number " << curve.inertial_number
+                  << " is above 1e-3; the test is not quasi-static (lower 'top wall speed' or 'inertial number')\n";
+      curves.push_back(std::move(curve));
+    }
+  return curves;
+}
+
+int run_biaxial_command(const std::string &input_file, bool resume)
+{
+  if (resume)
+    throw std::invalid_argument("geohybrid biaxial: --resume is not supported; a campaign takes minutes, rerun it");
+  ParameterHandler prm;
+  declare_biaxial_parameters(prm);
+  parse_input_file(prm, input_file);
+  const std::string where = "input file '" + input_file + "'";
+  const BiaxialCampaign campaign = parse_biaxial_campaign(prm, where);
+
+  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
+  write_resolved_parameters(prm, out);
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<dem::BiaxialCurve> curves = run_biaxial_campaign(campaign, true);
+  const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  PlotPanel deviator{"axial strain [%]", "deviatoric stress [kPa]", {}};
+  PlotPanel volume{"axial strain [%]", "volumetric strain [%] (compression > 0)", {}};
+  for (const dem::BiaxialCurve &c : curves)
+    {
+      const std::string tag = std::to_string(static_cast<int>(std::lround(c.confining_stress / 1e3))) + "kPa";
+      const std::filesystem::path csv = out / ("biaxial_" + tag + ".csv");
+      std::ofstream f(csv);
+      f << std::setprecision(10)
+        << "axial_strain,deviatoric_stress_Pa,volumetric_strain,lateral_strain,axial_stress_Pa,lateral_stress_Pa\n";
+      for (const dem::BiaxialPoint &p : c.points)
+        f << p.axial_strain << ',' << p.deviatoric_stress << ',' << p.volumetric_strain << ',' << p.lateral_strain
+          << ',' << p.axial_stress << ',' << p.lateral_stress << '\n';
+      if (!f)
+        throw std::runtime_error("cannot write " + csv.string());
+      deviator.series.push_back({csv, 1, 2, "sigma_0 = " + tag, 100.0, 1e-3});
+      volume.series.push_back({csv, 1, 3, "sigma_0 = " + tag, 100.0, 100.0});
+    }
+  plot_png(out / "biaxial.png", "Biaxial compression (REDF samples)", {deviator, volume});
+
+  const dem::BiaxialParameters r = dem::analyse_biaxial_curves(curves);
+  Summary summary;
+  summary.set("command", "biaxial");
+  summary.set("peak_friction_angle_deg", r.peak_friction_angle_deg);
+  summary.set("residual_friction_angle_deg", r.residual_friction_angle_deg);
+  summary.set("cohesion_Pa", r.cohesion);
+  summary.set("young_modulus_Pa", r.young_modulus);
+  summary.set("young_modulus_50_Pa", r.young_modulus_50);
+  summary.set("poisson_ratio", r.poisson_ratio);
+  summary.set("dilatancy_angle_deg", r.dilatancy_angle_deg);
+  double porosity = 0.0, inertial = 0.0;
+  for (const dem::BiaxialCurve &c : curves)
+    {
+      porosity += c.initial_porosity / curves.size();
+      inertial = std::max(inertial, c.inertial_number);
+    }
+  summary.set("porosity", porosity);
+  summary.set("max_inertial_number", inertial);
+  summary.set("n_particles", static_cast<double>(campaign.sample.n_particles));
+  summary.set("wall_time_s", wall_time);
+  // The paper's sand 1 (triaxial tests at INSA, section 4.2): phi' = 38.4 deg, E = 20 MPa.
+  summary.set("reference_friction_angle_deg", 38.4);
+  summary.set("reference_young_modulus_Pa", 20e6);
+  summary.write(out / "summary.json");
+  std::cout << std::setprecision(4) << "geohybrid biaxial: peak friction angle " << r.peak_friction_angle_deg
+            << " deg (paper's sand 1: 38.4), residual " << r.residual_friction_angle_deg << " deg, cohesion "
+            << r.cohesion << " Pa, E " << r.young_modulus / 1e6 << " MPa (paper: 20), E50 " << r.young_modulus_50 / 1e6
+            << " MPa, nu " << r.poisson_ratio << ", psi " << r.dilatancy_angle_deg << " deg; porosity " << porosity
+            << "; " << wall_time << " s\nresults in " << out.string() << " (summary.json, biaxial.png, biaxial_*.csv)\n";
+  return 0;
+}
+} // namespace geohybrid::apps

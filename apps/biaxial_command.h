@@ -1,0 +1,29 @@
+#pragma once
+// `geohybrid biaxial FILE.prm`: REDF samples sheared in biaxial compression at several
+// confining stresses, and the macroscopic parameters read from the curves.
+#include "dem/biaxial_test.h"
+#include "dem/sample_preparation.h"
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <vector>
+
+namespace geohybrid::apps
+{
+void declare_biaxial_parameters(dealii::ParameterHandler &prm);
+int run_biaxial_command(const std::string &input_file, bool resume);
+
+/// What a biaxial campaign needs, read from the parameters (shared with `calibrate`).
+struct BiaxialCampaign
+{
+  dem::RedfSpec sample;                ///< target_stress is set per confinement
+  dem::BiaxialSpec test;               ///< confining_stress is set per confinement
+  std::vector<double> confining_stresses;
+};
+/// Reads the Sample, Particle contact, Wall contact and Test subsections. Throws naming `where`.
+BiaxialCampaign parse_biaxial_campaign(dealii::ParameterHandler &prm, const std::string &where);
+
+/// Runs the campaign: one REDF sample (same seed) and one test per confining stress.
+std::vector<dem::BiaxialCurve> run_biaxial_campaign(const BiaxialCampaign &campaign, bool show_progress);
+} // namespace geohybrid::apps

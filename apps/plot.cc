@@ -1,0 +1,46 @@
+#include "plot.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+namespace geohybrid::apps
+{
+bool plot_png(const std::filesystem::path &png, const std::string &title, const std::vector<PlotPanel> &panels)
+{
+  const std::filesystem::path script = png.string() + ".gp";
+  {
+    std::ofstream gp(script);
+    gp << "set terminal pngcairo size 900," << 420 * panels.size() << " font ',11'\n"
+       << "set output '" << png.string() << "'\n"
+       << "set datafile separator ','\nset key autotitle columnhead\nset grid\n"
+       << "set multiplot layout " << panels.size() << ",1 title '" << title << "'\n";
+    for (const PlotPanel &panel : panels)
+      {
+        gp << "set xlabel '" << panel.x_label << "'\nset ylabel '" << panel.y_label << "'\nplot ";
+        for (std::size_t k = 0; k < panel.series.size(); ++k)
+          {
+            const PlotSeries &s = panel.series[k];
+            gp << (k ? ", " : "") << "'" << s.csv.string() << "' using ($" << s.x_column << "*" << s.x_scale << "):($"
+               << s.y_column << "*" << s.y_scale << ") with lines lw 2 title '" << s.label << "'";
+          }
+        gp << "\n";
+      }
+    gp << "unset multiplot\n";
+  }
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
+    {
+      std::cerr << "note: gnuplot is not installed; " << script.string() << " can make " << png.string()
+                << " later (apt-get install gnuplot-nox)\n";
+      return false;
+    }
+  const std::string command = "gnuplot '" + script.string() + "' 2> '" + script.string() + ".log'";
+  if (std::system(command.c_str()) != 0)
+    {
+      std::cerr << "note: gnuplot failed on " << script.string() << " (see its .log); the CSV results are complete\n";
+      return false;
+    }
+  std::filesystem::remove(script.string() + ".log");
+  return true;
+}
+} // namespace geohybrid::apps
