@@ -65,8 +65,8 @@ void declare_biaxial_parameters(ParameterHandler &prm)
   prm.enter_subsection("Test");
   prm.declare_entry("confining stresses", "10e3, 20e3, 50e3", Patterns::List(Patterns::Double(1.0), 1),
                     "Lateral stresses sigma_0, one test each (the paper's triaxial tests: 10, 20, 50 kPa) [Pa]");
-  prm.declare_entry("top wall speed", "0", Patterns::Double(0.0),
-                    "Speed V of the top wall; 0 = chosen from the inertial number [m/s]");
+  prm.declare_entry("top wall speed", "auto", Patterns::Anything(),
+                    "Speed V of the top wall, positive, or 'auto' to choose it from the inertial number [m/s]");
   prm.declare_entry("inertial number", "2e-4", Patterns::Double(1e-8, 1.0),
                     "Target inertial number I = strain rate x d x sqrt(rho / sigma_0) when V is 0; "
                     "quasi-static below 1e-3 [-]");
@@ -107,7 +107,21 @@ BiaxialCampaign parse_biaxial_campaign(ParameterHandler &prm, const std::string 
   prm.enter_subsection("Test");
   for (const std::string &item : dealii::Utilities::split_string_list(prm.get("confining stresses"), ','))
     c.confining_stresses.push_back(dealii::Utilities::string_to_double(item));
-  c.test.top_wall_speed = prm.get_double("top wall speed");
+  const std::string speed = prm.get("top wall speed");
+  if (speed != "auto")
+    {
+      try
+        {
+          c.test.top_wall_speed = std::stod(speed);
+        }
+      catch (const std::exception &)
+        {
+          c.test.top_wall_speed = -1.0;
+        }
+      if (!(c.test.top_wall_speed > 0.0))
+        throw std::invalid_argument(where + ": 'Test/top wall speed' = '" + speed +
+                                    "' must be a positive speed in m/s, or 'auto'");
+    }
   c.test.target_inertial_number = prm.get_double("inertial number");
   c.test.final_axial_strain = prm.get_double("final axial strain");
   c.test.record_interval = prm.get_double("record interval");

@@ -181,30 +181,24 @@ RedfSample make_redf_sample(const RedfSpec &s, const std::function<void(double)>
     {
       const bool jammed = mean_wall_stress(system, box) > s.target_stress;
       const double n = porosity();
+      // Target porosity reached: the assembly is jammed or close to it (the friction is lowered
+      // only while it is jammed above the target), so the servo stage below compacts it little.
+      if (n <= upper)
+        break;
       if (steps++ > s.max_steps)
         throw std::runtime_error("REDF: no convergence after " + std::to_string(s.max_steps) +
                                  " steps (porosity " + std::to_string(n) + ")");
       if (!jammed)
         {
           steps_jammed = 0;
-          if (n < s.target_porosity - s.porosity_tolerance)
-            {
-              std::ostringstream message;
-              message << "REDF: the assembly is still loose at porosity " << n << " (target " << s.target_porosity
-                      << ") with a growth friction of " << friction_deg
-                      << " degrees; raise 'initial growth friction' or lower the target stress";
-              throw std::runtime_error(message.str());
-            }
           system.scale_particle_sizes(1.0 + growth_per_step);
           solid_area *= (1.0 + growth_per_step) * (1.0 + growth_per_step);
         }
       else if (++steps_jammed % relax_steps_per_friction_drop == 0 &&
                unbalanced_force_ratio(system) < 0.05)
         {
-          // Jammed, and still jammed after relaxing without growth: a stable state.
-          if (n <= upper)
-            break;
-          // Above the target porosity: lower the friction so the grains can rearrange.
+          // Jammed above the target porosity, and still jammed after relaxing without growth:
+          // lower the friction so the grains can rearrange into a denser state.
           if (friction_deg <= 0.0)
             {
               std::ostringstream message;
@@ -213,7 +207,7 @@ RedfSample make_redf_sample(const RedfSpec &s, const std::function<void(double)>
                       << mean_wall_stress(system, box) << " Pa); choose a larger porosity or a lower stress";
               throw std::runtime_error(message.str());
             }
-          friction_deg = friction_deg > 0.5 ? 0.8 * friction_deg : 0.0;
+          friction_deg = friction_deg > 0.5 ? 0.9 * friction_deg : 0.0;
           use_friction(friction_deg);
         }
       system.step();
@@ -255,9 +249,10 @@ RedfSample make_redf_sample(const RedfSpec &s, const std::function<void(double)>
       std::ostringstream message;
       message << "REDF: the sample settled at porosity " << result.porosity << ", outside the target "
               << s.target_porosity << " +/- " << s.porosity_tolerance
-              << (result.porosity < s.target_porosity ? " (the confining stress compacted it: target too loose "
-                                                        "for this friction)"
-                                                      : "");
+              << (result.porosity < s.target_porosity
+                    ? " (the confining stress compacted it: the target is too loose for this friction at this "
+                      "stress; raise 'initial growth friction' or lower the target stress)"
+                    : "");
       throw std::runtime_error(message.str());
     }
   if (progress)
