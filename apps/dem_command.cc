@@ -10,6 +10,7 @@
 #include "dem_command.h"
 
 #include "contact_parameters.h"
+#include "plot.h"
 #include "run_directory.h"
 
 #include "dem/checkpoint.h"
@@ -412,6 +413,11 @@ int run_dem_command(const std::string &input_file, bool resume)
   summary.set("stress_yy_bulk_Pa", stress[1]);
   summary.set("stress_xy_bulk_Pa", stress[2]);
   summary.set("floor_normal_stress_Pa", system.walls()[0].normal_stress());
+  const std::filesystem::path series_csv = out / "time_series.csv";
+  plot_png(out / "time_series.png", "DEM run: energy and contacts",
+           {PlotPanel{"time [s]", "kinetic energy [J/m]", {PlotSeries{series_csv, 1, 2, "kinetic"}}},
+            PlotPanel{"time [s]", "coordination number [-]", {PlotSeries{series_csv, 1, 10, "coordination"}}},
+            PlotPanel{"time [s]", "energy balance error [-]", {PlotSeries{series_csv, 1, 9, "relative error"}}}});
   summary.write(out / "summary.json");
   std::cout << "geohybrid dem: done in " << std::fixed << std::setprecision(1) << wall_time
             << " s; results in " << out.string() << " (summary.json, time_series.csv, particles.xdmf)\n";

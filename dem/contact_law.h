@@ -45,7 +45,7 @@ struct ContactKinematics
   double overlap;                  ///< r_i + r_j - distance (> 0 in penetration) [m]
   double overlap_rate;             ///< d(overlap)/dt [m/s]
   double tangential_displacement;  ///< (v_cj - v_ci).t * dt this step [m]
-  double effective_mass;           ///< m_i m_j / (m_i + m_j), or m_i against a wall [kg/m]
+  double inverse_mass_sum;         ///< 1/m_i + 1/m_j, or 1/m_i against a wall: 1 / effective mass [m/kg]
   double time_step;                ///< dt [s]
 };
 
@@ -133,7 +133,11 @@ inline ContactForce LinearContactLaw::evaluate(const ContactKinematics &k, Conta
           return f;
         }
     }
-  const double dashpot = 2.0 * damping_ratio_ * std::sqrt(k.effective_mass * kn) * k.overlap_rate;
+  // Dashpot 2 zeta sqrt(m* kn) (d overlap / dt), m* = 1 / inverse_mass_sum; the square root is
+  // only taken when there is a dashpot (the inner loop of a run without one skips it).
+  const double dashpot = (damping_ratio_ > 0.0 && k.inverse_mass_sum > 0.0)
+                           ? 2.0 * damping_ratio_ * std::sqrt(kn / k.inverse_mass_sum) * k.overlap_rate
+                           : 0.0;
   f.normal_force       = f.elastic_normal + dashpot;
   // The integrator applies this force in the half kicks on either side of v(t), so its work is
   // dashpot * rate(t) * dt with rate(t) the mean of the half-step rates: book half now (with

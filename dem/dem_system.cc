@@ -187,24 +187,55 @@ void DemSystem::kick_and_drift()
   ParticleSet &p = particles_;
   const double dt = time_step_, half = 0.5 * dt;
   const std::size_t nb = p.n_bodies();
+  const bool book_damping = settings_.track_energy && settings_.local_damping > 0.0;
 #pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
   for (std::size_t b = 0; b < nb; ++b)
     {
       const double vx0 = p.vx[b], vy0 = p.vy[b], w0 = p.omega[b];
+      // (damping_* are zero without local damping: adding them changes nothing)
       p.vx[b] += half * (p.fx[b] + damping_fx_[b]) * p.inverse_mass[b];
       p.vy[b] += half * (p.fy[b] + damping_fy_[b]) * p.inverse_mass[b];
       p.omega[b] += half * (p.torque[b] + damping_torque_[b]) * p.inverse_inertia[b];
-      // Work of the damping force during this half kick (exact for a constant force).
-      body_scratch_[b] = 0.5 * half *
-                         (damping_fx_[b] * (vx0 + p.vx[b]) + damping_fy_[b] * (vy0 + p.vy[b]) +
-                          damping_torque_[b] * (w0 + p.omega[b]));
+      if (book_damping) // work of the damping force during this half kick (exact for a constant force)
+        body_scratch_[b] = 0.5 * half *
+                           (damping_fx_[b] * (vx0 + p.vx[b]) + damping_fy_[b] * (vy0 + p.vy[b]) +
+                            damping_torque_[b] * (w0 + p.omega[b]));
       p.x[b] += dt * p.vx[b];
       p.y[b] += dt * p.vy[b];
       p.rotation[b] += dt * p.omega[b];
     }
-  if (settings_.track_energy && settings_.local_damping > 0.0)
+  if (book_damping)
     accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
-  p.update_disc_positions(settings_.n_threads);
+
+  // Disc centres follow their bodies; the largest move since the last neighbour-list rebuild is
+  // measured in the same pass (max is exact, so the same on any number of threads). A separate
+  // pass from the bodies' one keeps both loops simple enough to vectorise (measured faster).
+  const std::size_t nd = p.n_discs_total();
+  const bool measure = !rebuild_needed_ && disc_x_at_rebuild_.size() == nd;
+  double max_move2 = 0.0;
+#pragma omp parallel for schedule(static) num_threads(settings_.n_threads) reduction(max : max_move2)
+  for (std::size_t d = 0; d < nd; ++d)
+    {
+      const std::uint32_t b = p.disc_body[d];
+      const double ox = p.disc_offset_x[d], oy = p.disc_offset_y[d];
+      if (ox == 0.0 && oy == 0.0)
+        {
+          p.disc_x[d] = p.x[b];
+          p.disc_y[d] = p.y[b];
+        }
+      else
+        {
+          const double c = std::cos(p.rotation[b]), sn = std::sin(p.rotation[b]);
+          p.disc_x[d] = p.x[b] + c * ox - sn * oy;
+          p.disc_y[d] = p.y[b] + sn * ox + c * oy;
+        }
+      if (measure)
+        {
+          const double dx = p.disc_x[d] - disc_x_at_rebuild_[d], dy = p.disc_y[d] - disc_y_at_rebuild_[d];
+          max_move2 = std::max(max_move2, dx * dx + dy * dy);
+        }
+    }
+  max_disc_move_ = std::sqrt(max_move2);
 }
 
 void DemSystem::move_walls()
@@ -235,17 +266,9 @@ void DemSystem::move_walls()
 void DemSystem::rebuild_if_needed()
 {
   const ParticleSet &p = particles_;
-  const std::size_t nd = p.n_discs_total();
   if (!rebuild_needed_)
     {
-      double max_move2 = 0.0;
-#pragma omp parallel for schedule(static) num_threads(settings_.n_threads) reduction(max : max_move2)
-      for (std::size_t d = 0; d < nd; ++d)
-        {
-          const double dx = p.disc_x[d] - disc_x_at_rebuild_[d], dy = p.disc_y[d] - disc_y_at_rebuild_[d];
-          max_move2 = std::max(max_move2, dx * dx + dy * dy);
-        }
-      const double max_move = std::sqrt(max_move2);
+      const double max_move = max_disc_move_; // measured by kick_and_drift()
       double wall_move = 0.0;
       for (std::size_t w = 0; w < walls_.size(); ++w)
         wall_move = std::max(wall_move, (walls_[w].start - wall_start_at_rebuild_[w]).norm());
@@ -271,53 +294,115 @@ void DemSystem::rebuild_if_needed()
 
 void DemSystem::compute_pair_forces()
 {
-  const ParticleSet &p = particles_;
+  ParticleSet &p = particles_;
   const LinearContactLaw &law = particle_law_;
   PairContacts &c = pairs_;
   const double dt = time_step_;
-  const std::size_t n = c.size();
+  const std::size_t n = c.size(), nb = p.n_bodies();
+  const bool track_energy = settings_.track_energy;
+
+  // One contact: the force on disc i and the moments on both bodies, stored per pair.
+  // Returns false for a pair that is apart (and not bonded): its force is zero.
+  const auto evaluate = [&](std::size_t q, std::uint64_t &broken) __attribute__((always_inline)) -> bool {
+    const std::uint32_t i = c.disc_i[q], j = c.disc_j[q];
+    ContactState &state = c.state[q];
+    const double dx = p.disc_x[j] - p.disc_x[i], dy = p.disc_y[j] - p.disc_y[i];
+    const double radius_sum = p.disc_radius[i] + p.disc_radius[j];
+    const double distance2 = dx * dx + dy * dy;
+    if (distance2 >= radius_sum * radius_sum && !state.bonded && !state.touching)
+      {
+        c.force_x[q] = c.force_y[q] = c.torque_i[q] = c.torque_j[q] = c.elastic_normal_force[q] = 0.0;
+        if (track_energy)
+          c.friction_work[q] = c.viscous_work[q] = 0.0;
+        return false;
+      }
+    const double distance = std::sqrt(distance2), inverse_distance = 1.0 / distance;
+    const Vec2 normal(dx * inverse_distance, dy * inverse_distance);
+    const Vec2 tangent = perp(normal);
+    const double overlap = radius_sum - distance;
+    const std::uint32_t bi = p.disc_body[i], bj = p.disc_body[j];
+    const Vec2 contact_point = Vec2(p.disc_x[i], p.disc_y[i]) + (p.disc_radius[i] - 0.5 * overlap) * normal;
+    const Vec2 lever_i = contact_point - Vec2(p.x[bi], p.y[bi]);
+    const Vec2 lever_j = contact_point - Vec2(p.x[bj], p.y[bj]);
+    const Vec2 v_i = Vec2(p.vx[bi], p.vy[bi]) + spin_velocity(p.omega[bi], lever_i);
+    const Vec2 v_j = Vec2(p.vx[bj], p.vy[bj]) + spin_velocity(p.omega[bj], lever_j);
+    const Vec2 v_rel = v_j - v_i;
+    const ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt,
+                              p.inverse_mass[bi] + p.inverse_mass[bj], dt};
+    const ContactForce f = law.evaluate(k, state);
+    const Vec2 force_on_i = -f.normal_force * normal + f.tangential_force * tangent;
+    c.force_x[q] = force_on_i.x();
+    c.force_y[q] = force_on_i.y();
+    c.torque_i[q] = cross(lever_i, force_on_i);
+    c.torque_j[q] = -cross(lever_j, force_on_i);
+    c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
+    if (track_energy)
+      {
+        c.friction_work[q] = f.friction_work;
+        c.viscous_work[q] = f.viscous_work;
+      }
+    broken += f.bond_broke;
+    return true;
+  };
+
+  // Body resultants start from gravity; + 0.0 turns a -0.0 into +0.0. A sum that starts at +0.0
+  // never becomes -0.0 (x + (-x) is +0.0), and adding +-0.0 to anything else changes no bit, so
+  // the one-thread path may skip the zero forces of pairs that are apart and still give exactly
+  // the threaded result.
+  const double gx = settings_.gravity.x(), gy = settings_.gravity.y();
   std::uint64_t broken = 0;
-#pragma omp parallel for schedule(static) num_threads(settings_.n_threads) reduction(+ : broken)
-  for (std::size_t q = 0; q < n; ++q)
+  if (settings_.n_threads == 1)
     {
-      const std::uint32_t i = c.disc_i[q], j = c.disc_j[q];
-      ContactState &state = c.state[q];
-      const double dx = p.disc_x[j] - p.disc_x[i], dy = p.disc_y[j] - p.disc_y[i];
-      const double radius_sum = p.disc_radius[i] + p.disc_radius[j];
-      const double distance2 = dx * dx + dy * dy;
-      if (distance2 >= radius_sum * radius_sum && !state.bonded && !state.touching)
+      // One thread: add each pair's force to its two bodies as it is computed. The pairs are
+      // visited in ascending order, which is the order of every body's adjacency list, so each
+      // body sums exactly the same terms in the same order as the threaded gather below.
+      for (std::size_t b = 0; b < nb; ++b)
         {
-          c.force_x[q] = c.force_y[q] = c.torque_i[q] = c.torque_j[q] = 0.0;
-          c.elastic_normal_force[q] = c.friction_work[q] = c.viscous_work[q] = 0.0;
-          continue;
+          p.fx[b] = p.mass[b] * gx + 0.0;
+          p.fy[b] = p.mass[b] * gy + 0.0;
+          p.torque[b] = 0.0;
         }
-      const double distance = std::sqrt(distance2);
-      const Vec2 normal(dx / distance, dy / distance);
-      const Vec2 tangent = perp(normal);
-      const double overlap = radius_sum - distance;
-      const std::uint32_t bi = p.disc_body[i], bj = p.disc_body[j];
-      const Vec2 contact_point = Vec2(p.disc_x[i], p.disc_y[i]) + (p.disc_radius[i] - 0.5 * overlap) * normal;
-      const Vec2 lever_i = contact_point - Vec2(p.x[bi], p.y[bi]);
-      const Vec2 lever_j = contact_point - Vec2(p.x[bj], p.y[bj]);
-      const Vec2 v_i = Vec2(p.vx[bi], p.vy[bi]) + spin_velocity(p.omega[bi], lever_i);
-      const Vec2 v_j = Vec2(p.vx[bj], p.vy[bj]) + spin_velocity(p.omega[bj], lever_j);
-      const Vec2 v_rel = v_j - v_i;
-      const double inverse_mass_sum = p.inverse_mass[bi] + p.inverse_mass[bj];
-      const ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt,
-                                inverse_mass_sum > 0.0 ? 1.0 / inverse_mass_sum : 0.0, dt};
-      const ContactForce f = law.evaluate(k, state);
-      const Vec2 force_on_i = -f.normal_force * normal + f.tangential_force * tangent;
-      c.force_x[q] = force_on_i.x();
-      c.force_y[q] = force_on_i.y();
-      c.torque_i[q] = cross(lever_i, force_on_i);
-      c.torque_j[q] = -cross(lever_j, force_on_i);
-      c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
-      c.friction_work[q] = f.friction_work;
-      c.viscous_work[q] = f.viscous_work;
-      broken += f.bond_broke;
+      for (std::size_t q = 0; q < n; ++q)
+        if (evaluate(q, broken))
+          {
+            const std::uint32_t bi = p.disc_body[c.disc_i[q]], bj = p.disc_body[c.disc_j[q]];
+            p.fx[bi] += c.force_x[q];
+            p.fy[bi] += c.force_y[q];
+            p.torque[bi] += c.torque_i[q];
+            p.fx[bj] -= c.force_x[q];
+            p.fy[bj] -= c.force_y[q];
+            p.torque[bj] += c.torque_j[q];
+          }
+    }
+  else
+    {
+#pragma omp parallel num_threads(settings_.n_threads) reduction(+ : broken)
+      {
+#pragma omp for schedule(static)
+        for (std::size_t q = 0; q < n; ++q)
+          evaluate(q, broken);
+        // Each body gathers its contacts in ascending pair order (CSR built at rebuild).
+#pragma omp for schedule(static)
+        for (std::size_t b = 0; b < nb; ++b)
+          {
+            double fx = p.mass[b] * gx + 0.0, fy = p.mass[b] * gy + 0.0, t = 0.0;
+            for (std::uint32_t e = c.body_offset[b]; e < c.body_offset[b + 1]; ++e)
+              {
+                // Branch-free: the j side adds -F (x + (-1 f) is exactly x - f).
+                const std::uint32_t entry = c.body_entry[e], q = entry >> 1, is_j = entry & 1u;
+                const double sign = 1.0 - 2.0 * static_cast<double>(is_j);
+                fx += sign * c.force_x[q];
+                fy += sign * c.force_y[q];
+                t += is_j ? c.torque_j[q] : c.torque_i[q];
+              }
+            p.fx[b] = fx;
+            p.fy[b] = fy;
+            p.torque[b] = t;
+          }
+      }
     }
   n_broken_bonds_ += broken;
-  if (settings_.track_energy && dt > 0.0)
+  if (track_energy && dt > 0.0)
     {
       accumulated_.friction_dissipated += deterministic_sum(c.friction_work, settings_.n_threads);
       accumulated_.viscous_dissipated += deterministic_sum(c.viscous_work, settings_.n_threads);
@@ -356,8 +441,7 @@ void DemSystem::compute_wall_forces()
           const Vec2 lever = contact_point - Vec2(p.x[b], p.y[b]);
           const Vec2 v_disc = Vec2(p.vx[b], p.vy[b]) + spin_velocity(p.omega[b], lever);
           const Vec2 v_rel = wall.velocity - v_disc;
-          const ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt,
-                                    p.inverse_mass[b] > 0.0 ? p.mass[b] : 0.0, dt};
+          const ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt, p.inverse_mass[b], dt};
           const ContactForce f = wall.law.evaluate(k, state);
           const Vec2 force = -f.normal_force * normal + f.tangential_force * tangent;
           c.force_x[q] = force.x();
@@ -390,36 +474,23 @@ void DemSystem::compute_wall_forces()
 void DemSystem::gather_forces_and_kick()
 {
   ParticleSet &p = particles_;
-  const PairContacts &c = pairs_;
   const std::size_t nb = p.n_bodies();
-  const double gx = settings_.gravity.x(), gy = settings_.gravity.y();
-#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
-  for (std::size_t b = 0; b < nb; ++b)
-    {
-      double fx = p.mass[b] * gx, fy = p.mass[b] * gy, t = 0.0;
-      for (std::uint32_t e = c.body_offset[b]; e < c.body_offset[b + 1]; ++e)
-        {
-          const std::uint32_t entry = c.body_entry[e], q = entry >> 1;
-          if (entry & 1u)
-            {
-              fx -= c.force_x[q];
-              fy -= c.force_y[q];
-              t += c.torque_j[q];
-            }
-          else
-            {
-              fx += c.force_x[q];
-              fy += c.force_y[q];
-              t += c.torque_i[q];
-            }
-        }
-      p.fx[b] = fx;
-      p.fy[b] = fy;
-      p.torque[b] = t;
-    }
   compute_wall_forces();
 
   const double half = 0.5 * time_step_, alpha = settings_.local_damping;
+  const bool book_damping = settings_.track_energy && alpha > 0.0;
+  if (alpha == 0.0)
+    {
+      // No local damping (dynamics): the plain second half kick; damping_* stay zero.
+#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
+      for (std::size_t b = 0; b < nb; ++b)
+        {
+          p.vx[b] += half * p.fx[b] * p.inverse_mass[b];
+          p.vy[b] += half * p.fy[b] * p.inverse_mass[b];
+          p.omega[b] += half * p.torque[b] * p.inverse_inertia[b];
+        }
+      return;
+    }
 #pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
   for (std::size_t b = 0; b < nb; ++b)
     {
@@ -428,8 +499,9 @@ void DemSystem::gather_forces_and_kick()
           damping_fx_[b] = damping_fy_[b] = damping_torque_[b] = body_scratch_[b] = 0.0;
           continue;
         }
+      // -alpha |F| sign(v), with sign(0) = 0
       const auto damping = [alpha](double force, double velocity) {
-        return velocity > 0.0 ? -alpha * std::abs(force) : (velocity < 0.0 ? alpha * std::abs(force) : 0.0);
+        return -alpha * std::abs(force) * static_cast<double>((velocity > 0.0) - (velocity < 0.0));
       };
       damping_fx_[b] = damping(p.fx[b], p.vx[b]);
       damping_fy_[b] = damping(p.fy[b], p.vy[b]);
@@ -438,11 +510,12 @@ void DemSystem::gather_forces_and_kick()
       p.vx[b] += half * (p.fx[b] + damping_fx_[b]) * p.inverse_mass[b];
       p.vy[b] += half * (p.fy[b] + damping_fy_[b]) * p.inverse_mass[b];
       p.omega[b] += half * (p.torque[b] + damping_torque_[b]) * p.inverse_inertia[b];
-      body_scratch_[b] = 0.5 * half *
-                         (damping_fx_[b] * (vx0 + p.vx[b]) + damping_fy_[b] * (vy0 + p.vy[b]) +
-                          damping_torque_[b] * (w0 + p.omega[b]));
+      if (book_damping)
+        body_scratch_[b] = 0.5 * half *
+                           (damping_fx_[b] * (vx0 + p.vx[b]) + damping_fy_[b] * (vy0 + p.vy[b]) +
+                            damping_torque_[b] * (w0 + p.omega[b]));
     }
-  if (settings_.track_energy && alpha > 0.0)
+  if (book_damping)
     accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
 }
 

@@ -167,6 +167,7 @@ private:
   std::vector<double> disc_x_at_rebuild_, disc_y_at_rebuild_;
   std::vector<Vec2> wall_start_at_rebuild_;
   double radius_growth_since_rebuild_ = 0.0;
+  double max_disc_move_ = 0.0; ///< largest disc displacement since the last rebuild [m]
 
   // Local damping force of the last evaluation (applied in both half kicks), per body.
   std::vector<double> damping_fx_, damping_fy_, damping_torque_;
