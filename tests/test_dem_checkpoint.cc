@@ -6,6 +6,8 @@
 
 #include <hdf5.h>
 
+#include "temporary_directory.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -22,22 +24,9 @@ namespace fs = std::filesystem;
 
 namespace
 {
-struct TemporaryDirectory
+struct TemporaryDirectory : geohybrid::testing::TemporaryDirectory
 {
-  fs::path path;
-  TemporaryDirectory()
-  {
-    std::random_device device;
-    const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();
-    path = fs::temp_directory_path() /
-           ("geohybrid_test_dem_checkpoint_" + std::to_string(device()) + "_" + std::to_string(tick));
-    fs::create_directories(path);
-  }
-  ~TemporaryDirectory()
-  {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
+  TemporaryDirectory() : geohybrid::testing::TemporaryDirectory("test_dem_checkpoint") {}
 };
 
 constexpr double density = 2650.0, r_max = 0.005, kn = 1.0e6;

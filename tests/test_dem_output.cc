@@ -5,6 +5,8 @@
 
 #include <hdf5.h>
 
+#include "temporary_directory.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -20,23 +22,9 @@ namespace fs = std::filesystem;
 
 namespace
 {
-/// A fresh directory under the system's temporary directory, removed with everything in it.
-struct TemporaryDirectory
+struct TemporaryDirectory : geohybrid::testing::TemporaryDirectory
 {
-  fs::path path;
-  TemporaryDirectory()
-  {
-    std::random_device device;
-    const auto tick = std::chrono::steady_clock::now().time_since_epoch().count();
-    path = fs::temp_directory_path() /
-           ("geohybrid_test_dem_output_" + std::to_string(device()) + "_" + std::to_string(tick));
-    fs::create_directories(path);
-  }
-  ~TemporaryDirectory()
-  {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
+  TemporaryDirectory() : geohybrid::testing::TemporaryDirectory("test_dem_output") {}
 };
 
 // ---- reading HDF5 back ---------------------------------------------------------------------------
