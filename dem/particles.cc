@@ -160,10 +160,13 @@ void ParticleSet::fix_body(std::size_t b)
   vx[b] = vy[b] = omega[b] = 0.0;
 }
 
-void ParticleSet::update_disc_positions(int n_threads)
+double ParticleSet::update_disc_positions(int n_threads, const std::vector<double> *reference_x,
+                                          const std::vector<double> *reference_y)
 {
   const std::size_t nd = disc_radius.size();
-#pragma omp parallel for schedule(static) num_threads(n_threads)
+  const bool measure = reference_x && reference_y && reference_x->size() == nd && reference_y->size() == nd;
+  double max_move2 = 0.0;
+#pragma omp parallel for schedule(static) num_threads(n_threads) reduction(max : max_move2)
   for (std::size_t d = 0; d < nd; ++d)
     {
       const std::uint32_t b = disc_body[d];
@@ -172,12 +175,20 @@ void ParticleSet::update_disc_positions(int n_threads)
         {
           disc_x[d] = x[b];
           disc_y[d] = y[b];
-          continue;
         }
-      const double c = std::cos(rotation[b]), s = std::sin(rotation[b]);
-      disc_x[d] = x[b] + c * ox - s * oy;
-      disc_y[d] = y[b] + s * ox + c * oy;
+      else
+        {
+          const double c = std::cos(rotation[b]), s = std::sin(rotation[b]);
+          disc_x[d] = x[b] + c * ox - s * oy;
+          disc_y[d] = y[b] + s * ox + c * oy;
+        }
+      if (measure)
+        {
+          const double dx = disc_x[d] - (*reference_x)[d], dy = disc_y[d] - (*reference_y)[d];
+          max_move2 = std::max(max_move2, dx * dx + dy * dy);
+        }
     }
+  return max_move2;
 }
 
 double ParticleSet::body_area(std::size_t b) const

@@ -48,7 +48,10 @@ struct ParticleSet
   void fix_body(std::size_t b);
 
   /// Recomputes disc world positions from body positions and rotations, on n_threads threads.
-  void update_disc_positions(int n_threads = 1);
+  /// With reference positions (one per disc), also returns the largest squared displacement
+  /// from them, measured in the same pass (max is exact: the same on any number of threads).
+  double update_disc_positions(int n_threads = 1, const std::vector<double> *reference_x = nullptr,
+                               const std::vector<double> *reference_y = nullptr);
 
   /// Solid area of body b [m^2 per m]: mass / density is not stored, so this is from geometry.
   double body_area(std::size_t b) const;
