@@ -33,10 +33,11 @@ static_assert(sizeof(ContactParameters) == 56, "ContactParameters changed: updat
 static_assert(sizeof(WallServo) == 40, "WallServo changed: update the checkpoint");
 static_assert(sizeof(Wall) == 256, "Wall changed: update the checkpoint");
 static_assert(sizeof(ParticleSet) == 22 * sizeof(std::vector<double>), "ParticleSet changed: update the checkpoint");
-static_assert(sizeof(PairContacts) == 13 * sizeof(std::vector<double>), "PairContacts changed: update the checkpoint");
+static_assert(sizeof(PairContacts) == 16 * sizeof(std::vector<double>) + sizeof(std::size_t),
+              "PairContacts changed: update the checkpoint (the adjacency and chunk plan are derived, not stored)");
 static_assert(sizeof(WallContacts) == 7 * sizeof(std::vector<double>), "WallContacts changed: update the checkpoint");
 static_assert(sizeof(EnergyBudget) == 7 * sizeof(double), "EnergyBudget changed: update the checkpoint");
-static_assert(sizeof(DemSystemState) == 1232, "DemSystemState changed: update the checkpoint");
+static_assert(sizeof(DemSystemState) == 1312, "DemSystemState changed: update the checkpoint");
 #endif
 
 std::string describe(const std::filesystem::path &file) { return "DEM checkpoint '" + file.string() + "'"; }
@@ -91,8 +92,8 @@ void put_attr(hid_t parent, const char *name, T value, const std::string &where)
 }
 
 /// A dataset of `values.size() / columns` rows (one dimension if columns == 1).
-template <typename T>
-void put(hid_t parent, const char *name, const std::vector<T> &values, const std::string &where,
+template <typename T, typename Allocator>
+void put(hid_t parent, const char *name, const std::vector<T, Allocator> &values, const std::string &where,
          std::size_t columns = 1)
 {
   std::vector<hsize_t> dims{values.size() / columns};
@@ -117,7 +118,7 @@ void put(hid_t parent, const char *name, const Vec2 &value, const std::string &w
 
 std::uint8_t as_byte(bool b) { return b ? 1 : 0; }
 
-void put_states(hid_t parent, const std::vector<ContactState> &states, const std::string &where)
+void put_states(hid_t parent, const SoaVector<ContactState> &states, const std::string &where)
 {
   std::vector<double> tangential_force(states.size()), dashpot_force(states.size());
   std::vector<std::uint8_t> bonded(states.size()), touching(states.size());
@@ -311,7 +312,7 @@ T get_attr(hid_t parent, const char *name, const std::string &where)
 /// Reads a dataset of any number of rows and `columns` columns (one dimension if columns == 1)
 /// whose stored type is of the class and size of T.
 template <typename T>
-std::vector<T> get(hid_t parent, const char *name, const std::string &where, std::size_t columns = 1)
+SoaVector<T> get(hid_t parent, const char *name, const std::string &where, std::size_t columns = 1)
 {
   const std::string what = std::string("dataset '") + name + "'";
   Handle set(H5Dopen2(parent, name, H5P_DEFAULT), H5Dclose, where, "opening " + what);
@@ -321,7 +322,7 @@ std::vector<T> get(hid_t parent, const char *name, const std::string &where, std
   const std::vector<hsize_t> dims = hdf5::dataset_shape(set.get(), where, what);
   if (dims.size() != (columns > 1 ? 2u : 1u) || (columns > 1 && dims[1] != columns))
     fail(where, what + " has an unexpected shape");
-  std::vector<T> values(static_cast<std::size_t>(dims[0]) * columns);
+  SoaVector<T> values(static_cast<std::size_t>(dims[0]) * columns);
   if (!values.empty())
     check(H5Dread(set.get(), Type<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), where,
           "reading " + what);
@@ -330,7 +331,7 @@ std::vector<T> get(hid_t parent, const char *name, const std::string &where, std
 
 std::vector<Vec2> get_vec2s(hid_t parent, const char *name, const std::string &where)
 {
-  const std::vector<double> flat = get<double>(parent, name, where, 2);
+  const auto flat = get<double>(parent, name, where, 2);
   std::vector<Vec2> values(flat.size() / 2);
   for (std::size_t k = 0; k < values.size(); ++k)
     values[k] = Vec2(flat[2 * k], flat[2 * k + 1]);
@@ -339,7 +340,7 @@ std::vector<Vec2> get_vec2s(hid_t parent, const char *name, const std::string &w
 
 Vec2 get_vec2(hid_t parent, const char *name, const std::string &where)
 {
-  const std::vector<double> v = get<double>(parent, name, where);
+  const auto v = get<double>(parent, name, where);
   if (v.size() != 2)
     fail(where, std::string("dataset '") + name + "' does not hold 2 values");
   return Vec2(v[0], v[1]);
@@ -353,16 +354,16 @@ bool get_bool(hid_t parent, const char *name, const std::string &where)
   return b == 1;
 }
 
-std::vector<ContactState> get_states(hid_t parent, const std::string &where)
+SoaVector<ContactState> get_states(hid_t parent, const std::string &where)
 {
-  const std::vector<double> tangential_force = get<double>(parent, "tangential_force", where);
-  const std::vector<std::uint8_t> bonded = get<std::uint8_t>(parent, "bonded", where);
-  const std::vector<std::uint8_t> touching = get<std::uint8_t>(parent, "touching", where);
-  const std::vector<double> dashpot_force = get<double>(parent, "dashpot_force", where);
+  const auto tangential_force = get<double>(parent, "tangential_force", where);
+  const auto bonded = get<std::uint8_t>(parent, "bonded", where);
+  const auto touching = get<std::uint8_t>(parent, "touching", where);
+  const auto dashpot_force = get<double>(parent, "dashpot_force", where);
   if (bonded.size() != tangential_force.size() || touching.size() != tangential_force.size() ||
       dashpot_force.size() != tangential_force.size())
     fail(where, "contact states of different lengths");
-  std::vector<ContactState> states(tangential_force.size());
+  SoaVector<ContactState> states(tangential_force.size());
   for (std::size_t q = 0; q < states.size(); ++q)
     {
       if (bonded[q] > 1 || touching[q] > 1)

@@ -143,10 +143,10 @@ void NeighbourSearch::rebuild_pairs(const ParticleSet &p, double skin, int n_thr
     }
   pairs.resize_results();
 
-  build_body_adjacency(p, pairs);
+  build_body_adjacency(p, pairs, static_cast<std::size_t>(n_threads));
 }
 
-void build_body_adjacency(const ParticleSet &p, PairContacts &pairs)
+void build_body_adjacency(const ParticleSet &p, PairContacts &pairs, std::size_t n_chunks)
 {
   const std::size_t nb = p.n_bodies(), n = pairs.size();
   pairs.body_offset.assign(nb + 1, 0);
@@ -159,12 +159,43 @@ void build_body_adjacency(const ParticleSet &p, PairContacts &pairs)
     pairs.body_offset[b + 1] += pairs.body_offset[b];
   pairs.body_entry.resize(2 * n);
   // Filling in ascending pair order keeps every body's list in a fixed order.
-  std::vector<std::uint32_t> &next = pairs.adjacency_scratch;
+  SoaVector<std::uint32_t> &next = pairs.adjacency_scratch;
   next.assign(pairs.body_offset.begin(), pairs.body_offset.end() - 1);
   for (std::size_t q = 0; q < n; ++q)
     {
       pairs.body_entry[next[p.disc_body[pairs.disc_i[q]]]++] = static_cast<std::uint32_t>(2 * q);
       pairs.body_entry[next[p.disc_body[pairs.disc_j[q]]]++] = static_cast<std::uint32_t>(2 * q + 1);
+    }
+
+  // Ownership by chunks of pairs. A body's entries are in ascending pair order, so its first
+  // entry is its lowest pair and its last entry its highest.
+  pairs.n_chunks = std::max<std::size_t>(1, n_chunks);
+  pairs.body_first_pair.assign(nb, static_cast<std::uint32_t>(n));
+  pairs.shared_body.clear();
+  pairs.shared_first_entry.clear();
+  const auto chunk_of = [&pairs](std::size_t q) {
+    std::size_t k = q * pairs.n_chunks / std::max<std::size_t>(1, pairs.size());
+    while (k > 0 && q < pairs.chunk_begin(k)) // the integer divisions may land one chunk off
+      --k;
+    while (k + 1 < pairs.n_chunks && q >= pairs.chunk_begin(k + 1))
+      ++k;
+    return k;
+  };
+  for (std::size_t b = 0; b < nb; ++b)
+    {
+      const std::uint32_t begin = pairs.body_offset[b], end = pairs.body_offset[b + 1];
+      if (begin == end)
+        continue;
+      const std::size_t first = pairs.body_entry[begin] >> 1, last = pairs.body_entry[end - 1] >> 1;
+      pairs.body_first_pair[b] = static_cast<std::uint32_t>(first);
+      const std::size_t owner_end = pairs.chunk_begin(chunk_of(first) + 1);
+      if (last < owner_end)
+        continue;
+      std::uint32_t e = begin;
+      while ((pairs.body_entry[e] >> 1) < owner_end)
+        ++e;
+      pairs.shared_body.push_back(static_cast<std::uint32_t>(b));
+      pairs.shared_first_entry.push_back(e);
     }
 }
 

@@ -16,36 +16,49 @@ namespace geohybrid::dem
 {
 struct PairContacts
 {
-  std::vector<std::uint32_t> disc_i, disc_j;
-  std::vector<ContactState> state;
+  SoaVector<std::uint32_t> disc_i, disc_j;
+  SoaVector<ContactState> state;
 
   // Results of the last force evaluation.
-  std::vector<double> force_x, force_y;      ///< force on disc i [N/m]
-  std::vector<double> torque_i, torque_j;    ///< moments about each body's centre of mass [N]
-  std::vector<double> elastic_normal_force;  ///< kn * overlap (0 when apart) [N/m]
-  std::vector<double> friction_work;         ///< energy dissipated by slip in the last step [J/m]
-  std::vector<double> viscous_work;          ///< energy dissipated by the dashpot in the last step [J/m]
+  SoaVector<double> force_x, force_y;      ///< force on disc i [N/m]
+  SoaVector<double> torque_i, torque_j;    ///< moments about each body's centre of mass [N]
+  SoaVector<double> elastic_normal_force;  ///< kn * overlap (0 when apart) [N/m]
+  SoaVector<double> friction_work;         ///< energy dissipated by slip in the last step [J/m]
+  SoaVector<double> viscous_work;          ///< energy dissipated by the dashpot in the last step [J/m]
 
   // Body -> contacts adjacency (CSR), rebuilt with the list: entry = 2 * pair + (body is j).
-  std::vector<std::uint32_t> body_offset;
-  std::vector<std::uint32_t> body_entry;
-  std::vector<std::uint32_t> adjacency_scratch; ///< reused by build_body_adjacency()
+  SoaVector<std::uint32_t> body_offset;
+  SoaVector<std::uint32_t> body_entry;
+  SoaVector<std::uint32_t> adjacency_scratch; ///< reused by build_body_adjacency()
+
+  // The force loop runs over n_chunks consecutive ranges of pairs, one per thread. A body belongs
+  // to the chunk of its lowest pair, which adds all its forces on that body directly; a body that
+  // also has pairs in later chunks ("shared", near a chunk boundary) gets those added afterwards,
+  // in pair order, from its CSR entry shared_first_entry on. Each body thus sums its forces in
+  // ascending pair order whatever the number of chunks (bit-for-bit the same result on any
+  // number of threads), and no two threads ever write to one body.
+  std::size_t n_chunks = 1;
+  SoaVector<std::uint32_t> body_first_pair; ///< lowest pair touching each body (size() if none)
+  SoaVector<std::uint32_t> shared_body, shared_first_entry;
+  /// First pair of chunk k (k = n_chunks gives size()).
+  std::size_t chunk_begin(std::size_t k) const { return size() * k / n_chunks; }
 
   std::size_t size() const { return disc_i.size(); }
   void resize_results();
 };
 
-/// (Re)builds the body -> contact adjacency of `pairs` from its pair list.
-void build_body_adjacency(const ParticleSet &particles, PairContacts &pairs);
+/// (Re)builds the body -> contact adjacency of `pairs` from its pair list, and the ownership of
+/// bodies by `n_chunks` chunks of pairs (see PairContacts).
+void build_body_adjacency(const ParticleSet &particles, PairContacts &pairs, std::size_t n_chunks);
 
 /// Discs near one wall, with their contact history (same role as PairContacts for walls).
 struct WallContacts
 {
-  std::vector<std::uint32_t> disc;
-  std::vector<ContactState> state;
-  std::vector<double> force_x, force_y;     ///< force on the disc [N/m]
-  std::vector<double> elastic_normal_force; ///< [N/m]
-  std::vector<double> friction_work, viscous_work; ///< [J/m]
+  SoaVector<std::uint32_t> disc;
+  SoaVector<ContactState> state;
+  SoaVector<double> force_x, force_y;     ///< force on the disc [N/m]
+  SoaVector<double> elastic_normal_force; ///< [N/m]
+  SoaVector<double> friction_work, viscous_work; ///< [J/m]
 };
 
 /// Cell-list broad phase. Owns its scratch arrays so that a rebuild does not allocate once the

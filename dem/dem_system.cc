@@ -4,10 +4,11 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 namespace geohybrid::dem
 {
-double deterministic_sum(const std::vector<double> &values, int n_threads)
+double deterministic_sum(const SoaVector<double> &values, int n_threads)
 {
   // At most 64 blocks whose size depends only on the number of values, never on the threads:
   // the partial sums and their order are the same on any number of threads, and the partial
@@ -276,7 +277,7 @@ void DemSystem::compute_pair_forces()
   const LinearContactLaw &law = particle_law_;
   PairContacts &c = pairs_;
   const double dt = time_step_;
-  const std::size_t n = c.size(), nb = p.n_bodies();
+  const std::size_t nb = p.n_bodies();
   const bool track_energy = settings_.track_energy;
 
   // One contact: the force on disc i and the moments on both bodies, stored per pair.
@@ -325,58 +326,85 @@ void DemSystem::compute_pair_forces()
 
   // Body resultants start from gravity; + 0.0 turns a -0.0 into +0.0. A sum that starts at +0.0
   // never becomes -0.0 (x + (-x) is +0.0), and adding +-0.0 to anything else changes no bit, so
-  // the one-thread path may skip the zero forces of pairs that are apart and still give exactly
-  // the threaded result.
+  // pairs that are apart (zero force) may be skipped and every body still sums exactly the same.
+  //
+  // Each chunk of pairs (one per thread, see PairContacts) adds each pair's force to the bodies
+  // it owns as soon as it is computed; the bodies shared with later chunks are completed after
+  // all chunks are done, in pair order. Every body therefore sums the same terms in the same
+  // (ascending pair) order on any number of threads, without a separate pass over all bodies.
   const double gx = settings_.gravity.x(), gy = settings_.gravity.y();
-  std::uint64_t broken = 0;
-  if (settings_.n_threads == 1)
-    {
-      // One thread: add each pair's force to its two bodies as it is computed. The pairs are
-      // visited in ascending order, which is the order of every body's adjacency list, so each
-      // body sums exactly the same terms in the same order as the threaded gather below.
-      for (std::size_t b = 0; b < nb; ++b)
+  const auto start_from_gravity = [&](std::size_t b) {
+    p.fx[b] = p.mass[b] * gx + 0.0;
+    p.fy[b] = p.mass[b] * gy + 0.0;
+    p.torque[b] = 0.0;
+  };
+  // `only_chunk`: a compile-time true when there is one chunk, which owns every body.
+  const auto run_chunk = [&](std::size_t k, std::uint64_t &broken, auto only_chunk) __attribute__((always_inline)) {
+    const std::size_t begin = c.chunk_begin(k), end = c.chunk_begin(k + 1);
+    constexpr bool first_chunk = decltype(only_chunk)::value;
+    for (std::size_t q = begin; q < end; ++q)
+      if (evaluate(q, broken))
         {
-          p.fx[b] = p.mass[b] * gx + 0.0;
-          p.fy[b] = p.mass[b] * gy + 0.0;
-          p.torque[b] = 0.0;
+          const std::uint32_t bi = p.disc_body[c.disc_i[q]], bj = p.disc_body[c.disc_j[q]];
+          if (first_chunk || c.body_first_pair[bi] >= begin)
+            {
+              p.fx[bi] += c.force_x[q];
+              p.fy[bi] += c.force_y[q];
+              p.torque[bi] += c.torque_i[q];
+            }
+          if (first_chunk || c.body_first_pair[bj] >= begin)
+            {
+              p.fx[bj] -= c.force_x[q];
+              p.fy[bj] -= c.force_y[q];
+              p.torque[bj] += c.torque_j[q];
+            }
         }
-      for (std::size_t q = 0; q < n; ++q)
-        if (evaluate(q, broken))
+  };
+  const auto complete_shared_body = [&](std::size_t k) {
+    const std::uint32_t b = c.shared_body[k];
+    double fx = p.fx[b], fy = p.fy[b], t = p.torque[b];
+    for (std::uint32_t e = c.shared_first_entry[k]; e < c.body_offset[b + 1]; ++e)
+      {
+        const std::uint32_t entry = c.body_entry[e], q = entry >> 1;
+        if (entry & 1u)
           {
-            const std::uint32_t bi = p.disc_body[c.disc_i[q]], bj = p.disc_body[c.disc_j[q]];
-            p.fx[bi] += c.force_x[q];
-            p.fy[bi] += c.force_y[q];
-            p.torque[bi] += c.torque_i[q];
-            p.fx[bj] -= c.force_x[q];
-            p.fy[bj] -= c.force_y[q];
-            p.torque[bj] += c.torque_j[q];
+            fx -= c.force_x[q];
+            fy -= c.force_y[q];
+            t += c.torque_j[q];
           }
+        else
+          {
+            fx += c.force_x[q];
+            fy += c.force_y[q];
+            t += c.torque_i[q];
+          }
+      }
+    p.fx[b] = fx;
+    p.fy[b] = fy;
+    p.torque[b] = t;
+  };
+
+  std::uint64_t broken = 0;
+  if (c.n_chunks == 1) // outside a parallel region the compiler optimises the loop better
+    {
+      for (std::size_t b = 0; b < nb; ++b)
+        start_from_gravity(b);
+      run_chunk(0, broken, std::true_type{});
     }
   else
     {
 #pragma omp parallel num_threads(settings_.n_threads) reduction(+ : broken)
       {
 #pragma omp for schedule(static)
-        for (std::size_t q = 0; q < n; ++q)
-          evaluate(q, broken);
-        // Each body gathers its contacts in ascending pair order (CSR built at rebuild).
-#pragma omp for schedule(static)
         for (std::size_t b = 0; b < nb; ++b)
-          {
-            double fx = p.mass[b] * gx + 0.0, fy = p.mass[b] * gy + 0.0, t = 0.0;
-            for (std::uint32_t e = c.body_offset[b]; e < c.body_offset[b + 1]; ++e)
-              {
-                // Branch-free: the j side adds -F (x + (-1 f) is exactly x - f).
-                const std::uint32_t entry = c.body_entry[e], q = entry >> 1, is_j = entry & 1u;
-                const double sign = 1.0 - 2.0 * static_cast<double>(is_j);
-                fx += sign * c.force_x[q];
-                fy += sign * c.force_y[q];
-                t += is_j ? c.torque_j[q] : c.torque_i[q];
-              }
-            p.fx[b] = fx;
-            p.fy[b] = fy;
-            p.torque[b] = t;
-          }
+          start_from_gravity(b);
+        // One chunk per iteration: chunks own disjoint bodies, so they may run in any order.
+#pragma omp for schedule(static, 1)
+        for (std::size_t k = 0; k < c.n_chunks; ++k)
+          run_chunk(k, broken, std::false_type{});
+#pragma omp for schedule(static)
+        for (std::size_t k = 0; k < c.shared_body.size(); ++k)
+          complete_shared_body(k);
       }
     }
   n_broken_bonds_ += broken;
@@ -605,7 +633,7 @@ void DemSystem::restore_state(DemSystemState s)
   // The body adjacency is derived from the pair list; result arrays may be absent in a file.
   if (pairs_.force_x.size() != pairs_.size())
     pairs_.resize_results();
-  build_body_adjacency(particles_, pairs_);
+  build_body_adjacency(particles_, pairs_, static_cast<std::size_t>(settings_.n_threads));
   body_scratch_.assign(nb, 0.0);
 }
 

@@ -63,9 +63,9 @@ struct DemSystemState
   PairContacts pairs;
   std::vector<WallContacts> wall_contacts;
   std::vector<Vec2> wall_force_previous;
-  std::vector<double> disc_x_at_rebuild, disc_y_at_rebuild;
+  SoaVector<double> disc_x_at_rebuild, disc_y_at_rebuild;
   std::vector<Vec2> wall_start_at_rebuild;
-  std::vector<double> damping_fx, damping_fy, damping_torque;
+  SoaVector<double> damping_fx, damping_fy, damping_torque;
   EnergyBudget accumulated;
   double time_step = 0.0, time = 0.0, skin = 0.0;
   double radius_growth_since_rebuild = 0.0;
@@ -164,19 +164,19 @@ private:
   std::uint64_t n_broken_bonds_ = 0;
 
   // Positions at the last rebuild, to decide when the Verlet list is stale.
-  std::vector<double> disc_x_at_rebuild_, disc_y_at_rebuild_;
+  SoaVector<double> disc_x_at_rebuild_, disc_y_at_rebuild_;
   std::vector<Vec2> wall_start_at_rebuild_;
   double radius_growth_since_rebuild_ = 0.0;
   double max_disc_move_ = 0.0; ///< largest disc displacement since the last rebuild [m]
 
   // Local damping force of the last evaluation (applied in both half kicks), per body.
-  std::vector<double> damping_fx_, damping_fy_, damping_torque_;
+  SoaVector<double> damping_fx_, damping_fy_, damping_torque_;
   // Per-body scratch for the energy balance.
-  std::vector<double> body_scratch_;
+  SoaVector<double> body_scratch_;
 
   EnergyBudget accumulated_; ///< only the dissipated terms and boundary work are used
 };
 
 /// Sum of values in a fixed order of fixed-size blocks: the same result for any thread count.
-double deterministic_sum(const std::vector<double> &values, int n_threads);
+double deterministic_sum(const SoaVector<double> &values, int n_threads);
 } // namespace geohybrid::dem

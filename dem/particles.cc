@@ -160,8 +160,8 @@ void ParticleSet::fix_body(std::size_t b)
   vx[b] = vy[b] = omega[b] = 0.0;
 }
 
-double ParticleSet::update_disc_positions(int n_threads, const std::vector<double> *reference_x,
-                                          const std::vector<double> *reference_y)
+double ParticleSet::update_disc_positions(int n_threads, const SoaVector<double> *reference_x,
+                                          const SoaVector<double> *reference_y)
 {
   const std::size_t nd = disc_radius.size();
   const bool measure = reference_x && reference_y && reference_x->size() == nd && reference_y->size() == nd;

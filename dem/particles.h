@@ -3,6 +3,7 @@
 // they are made of. Body b owns discs [first_disc[b], first_disc[b] + n_discs[b]). The arrays are
 // public on purpose: the force loops read them directly; ParticleSet only keeps them consistent.
 #include "conventions.h"
+#include "soa_vector.h"
 
 #include <cstdint>
 #include <vector>
@@ -12,21 +13,21 @@ namespace geohybrid::dem
 struct ParticleSet
 {
   // ---- bodies -------------------------------------------------------------------------------
-  std::vector<std::int64_t> body_id;    ///< the user's id (CSV id or generation order)
-  std::vector<double> x, y;             ///< centre of mass [m]
-  std::vector<double> rotation;         ///< angle about +z [rad]
-  std::vector<double> vx, vy;           ///< [m/s]
-  std::vector<double> omega;            ///< angular velocity about +z [rad/s]
-  std::vector<double> fx, fy, torque;   ///< resultant of the last force evaluation [N/m, N]
-  std::vector<double> mass, inertia;    ///< [kg/m], [kg m]
-  std::vector<double> inverse_mass, inverse_inertia; ///< 0 for a fixed body
-  std::vector<std::uint32_t> first_disc, n_discs;
+  SoaVector<std::int64_t> body_id;    ///< the user's id (CSV id or generation order)
+  SoaVector<double> x, y;             ///< centre of mass [m]
+  SoaVector<double> rotation;         ///< angle about +z [rad]
+  SoaVector<double> vx, vy;           ///< [m/s]
+  SoaVector<double> omega;            ///< angular velocity about +z [rad/s]
+  SoaVector<double> fx, fy, torque;   ///< resultant of the last force evaluation [N/m, N]
+  SoaVector<double> mass, inertia;    ///< [kg/m], [kg m]
+  SoaVector<double> inverse_mass, inverse_inertia; ///< 0 for a fixed body
+  SoaVector<std::uint32_t> first_disc, n_discs;
 
   // ---- discs --------------------------------------------------------------------------------
-  std::vector<std::uint32_t> disc_body;        ///< owning body
-  std::vector<double> disc_radius;             ///< [m]
-  std::vector<double> disc_offset_x, disc_offset_y; ///< centre in the body frame [m]
-  std::vector<double> disc_x, disc_y;          ///< centre in the world frame [m]
+  SoaVector<std::uint32_t> disc_body;        ///< owning body
+  SoaVector<double> disc_radius;             ///< [m]
+  SoaVector<double> disc_offset_x, disc_offset_y; ///< centre in the body frame [m]
+  SoaVector<double> disc_x, disc_y;          ///< centre in the world frame [m]
 
   std::size_t n_bodies() const { return x.size(); }
   std::size_t n_discs_total() const { return disc_radius.size(); }
@@ -50,8 +51,8 @@ struct ParticleSet
   /// Recomputes disc world positions from body positions and rotations, on n_threads threads.
   /// With reference positions (one per disc), also returns the largest squared displacement
   /// from them, measured in the same pass (max is exact: the same on any number of threads).
-  double update_disc_positions(int n_threads = 1, const std::vector<double> *reference_x = nullptr,
-                               const std::vector<double> *reference_y = nullptr);
+  double update_disc_positions(int n_threads = 1, const SoaVector<double> *reference_x = nullptr,
+                               const SoaVector<double> *reference_y = nullptr);
 
   /// Solid area of body b [m^2 per m]: mass / density is not stored, so this is from geometry.
   double body_area(std::size_t b) const;

@@ -30,7 +30,8 @@ std::string describe(const std::filesystem::path &file) { return "DEM snapshot f
   hdf5::fail(describe(file), what);
 }
 
-void write_doubles(hid_t parent, const char *name, const std::vector<double> &v, hsize_t columns,
+template <typename Allocator>
+void write_doubles(hid_t parent, const char *name, const std::vector<double, Allocator> &v, hsize_t columns,
                    const std::string &where)
 {
   std::vector<hsize_t> dims{v.size() / columns};
@@ -82,7 +83,7 @@ struct ContactLines
   }
 };
 
-double value_or_zero(const std::vector<double> &v, std::size_t q) { return q < v.size() ? v[q] : 0.0; }
+double value_or_zero(const SoaVector<double> &v, std::size_t q) { return q < v.size() ? v[q] : 0.0; }
 
 ContactLines pair_lines(const DemSystem &system)
 {

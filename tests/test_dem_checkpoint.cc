@@ -79,7 +79,7 @@ DemSystem deposition()
   return system;
 }
 
-void expect_same_states(const std::vector<ContactState> &a, const std::vector<ContactState> &b)
+void expect_same_states(const SoaVector<ContactState> &a, const SoaVector<ContactState> &b)
 {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t q = 0; q < a.size(); ++q)

@@ -110,9 +110,9 @@ Expected record(const DemSystem &system)
   const ParticleSet &p = system.particles();
   Expected e;
   e.time = system.time();
-  e.x = p.disc_x;
-  e.y = p.disc_y;
-  e.radius = p.disc_radius;
+  e.x.assign(p.disc_x.begin(), p.disc_x.end());
+  e.y.assign(p.disc_y.begin(), p.disc_y.end());
+  e.radius.assign(p.disc_radius.begin(), p.disc_radius.end());
   for (std::size_t d = 0; d < p.n_discs_total(); ++d)
     {
       const std::uint32_t b = p.disc_body[d];

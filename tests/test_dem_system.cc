@@ -393,18 +393,27 @@ void expect_identical(const DemSystem &one, const DemSystem &two)
 // its second thread waits for a core (libgomp's default active wait; measured here: 1 s with
 // OMP_WAIT_POLICY=passive, 55 s without, for 1000 steps). A differing rounding anywhere cannot
 // vanish in a colliding packing, so 300 steps with ~25 list rebuilds and many bond breaks suffice.
+//
+// Three threads too: the pair loop runs one chunk of pairs per thread, and the bodies shared by
+// two chunks are completed afterwards (PairContacts); an odd number of chunks on two cores
+// checks that this too sums in the one-thread order.
 TEST(Threads, OneAndTwoThreadsBitForBit)
 {
-  DemSystem one = deposition(1), two = deposition(2);
+  DemSystem one = deposition(1), two = deposition(2), three = deposition(3);
   one.step();
   two.step();
+  three.step();
   EXPECT_GT(one.pair_contacts().size(), 4096u); // several blocks in deterministic_sum
+  EXPECT_GT(two.pair_contacts().shared_body.size(), 0u);
+  EXPECT_GT(three.pair_contacts().shared_body.size(), two.pair_contacts().shared_body.size());
   for (int k = 0; k < 299; ++k)
     {
       one.step();
       two.step();
+      three.step();
     }
   expect_identical(one, two);
+  expect_identical(one, three);
   // The run exercised what it claims to: contacts in more than one summation block, broken
   // bonds, dissipation, list rebuilds.
   EXPECT_GT(one.pair_contacts().size(), 4096u);
