@@ -11,7 +11,7 @@
 //       local damping 0.7 and restitution 0.5 until the coordination number is >= 3 and the
 //       kinetic energy is below ke-tol x sum(m g d) (checked every 1000 steps).
 //   dem_bench time --packing FILE --threads N [--steps 2000] [--final FILE] [--track-energy]
-//                  [--shuffle]
+//                  [--shuffle] [--sort]   (--sort: renumber in Morton order, dem::spatially_sorted)
 //       Loads the settled packing (velocities zero, no contact history), and times `steps` steps
 //       (after one untimed step that builds the lists and the initial forces) with gravity, no
 //       local damping and no dashpot (restitution 1), dt = 0.5 x critical_time_step().
@@ -539,7 +539,7 @@ int prepare(const Args &a)
 }
 
 /// Loads the packing into a fresh system configured for the timed phase.
-DemSystem timed_system(const Packing &packing, int threads, bool track_energy, bool shuffle)
+DemSystem timed_system(const Packing &packing, int threads, bool track_energy, bool shuffle, bool sort)
 {
   Packing p = packing;
   if (shuffle)
@@ -562,7 +562,10 @@ DemSystem timed_system(const Packing &packing, int threads, bool track_energy, b
   settings.local_damping = 0.0;
   settings.n_threads     = threads;
   settings.track_energy  = track_energy;
-  DemSystem system(to_particles(p), law, settings);
+  ParticleSet particles = to_particles(p);
+  if (sort) // Morton order of cells one largest diameter wide
+    particles = spatially_sorted(particles, 2.0 * *std::max_element(p.r.begin(), p.r.end()));
+  DemSystem system(std::move(particles), law, settings);
   add_box_walls(system, law);
   system.set_time_step(dt_safety * system.critical_time_step());
   return system;
@@ -577,11 +580,12 @@ int time_run(const Args &a)
   const std::uint64_t steps = std::stoull(a.get("steps", "2000"));
   const bool track_energy = a.flag("track-energy");
   const bool shuffle = a.flag("shuffle");
+  const bool sort = a.flag("sort");
   // DemSystem passes num_threads to its own loops, but ParticleSet::update_disc_positions uses
   // the default team: set it too so that "1 thread" means one thread everywhere.
   omp_set_num_threads(threads);
 
-  DemSystem system = timed_system(packing, threads, track_energy, shuffle);
+  DemSystem system = timed_system(packing, threads, track_energy, shuffle, sort);
   const std::size_t n = system.particles().n_bodies();
   system.step(); // lists and forces at t = 0 plus one step: LAMMPS's "run 1"
   const std::uint64_t rebuilds0 = system.n_neighbour_rebuilds();
@@ -631,7 +635,7 @@ int write_lammps(const Args &a)
     throw std::runtime_error("cannot read packing " + a.get("packing"));
   const std::string dir = a.get("dir");
   const std::uint64_t steps = std::stoull(a.get("steps", "2000"));
-  const DemSystem system = timed_system(packing, 1, false, false);
+  const DemSystem system = timed_system(packing, 1, false, false, false);
   const ParticleSet &p = system.particles();
   const std::size_t n = p.n_bodies();
   double ymax = 0.0, rmin = 1e9, total_mass = 0.0;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace geohybrid::dem
 {
@@ -199,5 +201,65 @@ double ParticleSet::body_area(std::size_t b) const
   const double dx = disc_offset_x[d0 + 1] - disc_offset_x[d0];
   const double dy = disc_offset_y[d0 + 1] - disc_offset_y[d0];
   return two_disc_geometry(disc_radius[d0], disc_radius[d0 + 1], std::hypot(dx, dy)).area;
+}
+
+namespace
+{
+/// Interleaves the bits of two 32-bit cell indices: x in the even bits, y in the odd ones.
+std::uint64_t morton_key(std::uint32_t ix, std::uint32_t iy)
+{
+  const auto spread = [](std::uint64_t v) {
+    v &= 0xffffffffu;
+    v = (v | (v << 16)) & 0x0000ffff0000ffffull;
+    v = (v | (v << 8)) & 0x00ff00ff00ff00ffull;
+    v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0full;
+    v = (v | (v << 2)) & 0x3333333333333333ull;
+    v = (v | (v << 1)) & 0x5555555555555555ull;
+    return v;
+  };
+  return spread(ix) | (spread(iy) << 1);
+}
+} // namespace
+
+ParticleSet spatially_sorted(const ParticleSet &p, double cell_size)
+{
+  if (!(cell_size > 0.0))
+    throw std::invalid_argument("spatially_sorted: the cell size must be positive");
+  const std::size_t nb = p.n_bodies();
+  if (nb == 0)
+    return p;
+  const double x_min = *std::min_element(p.x.begin(), p.x.end());
+  const double y_min = *std::min_element(p.y.begin(), p.y.end());
+  const auto cell = [cell_size](double offset) {
+    return static_cast<std::uint32_t>(std::min(offset / cell_size, 4.0e9));
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(nb);
+  for (std::size_t b = 0; b < nb; ++b)
+    order[b] = {morton_key(cell(p.x[b] - x_min), cell(p.y[b] - y_min)), static_cast<std::uint32_t>(b)};
+  std::sort(order.begin(), order.end()); // ties: by the original index
+
+  ParticleSet s;
+  s.reserve(nb, p.n_discs_total());
+  for (const auto &[key, b] : order)
+    {
+      s.body_id.push_back(p.body_id[b]);
+      for (auto [to, from] : {std::pair{&s.x, &p.x}, {&s.y, &p.y}, {&s.rotation, &p.rotation}, {&s.vx, &p.vx},
+                              {&s.vy, &p.vy}, {&s.omega, &p.omega}, {&s.fx, &p.fx}, {&s.fy, &p.fy},
+                              {&s.torque, &p.torque}, {&s.mass, &p.mass}, {&s.inertia, &p.inertia},
+                              {&s.inverse_mass, &p.inverse_mass}, {&s.inverse_inertia, &p.inverse_inertia}})
+        to->push_back((*from)[b]);
+      const std::size_t nb_new = s.first_disc.size();
+      s.first_disc.push_back(static_cast<std::uint32_t>(s.disc_radius.size()));
+      s.n_discs.push_back(p.n_discs[b]);
+      for (std::uint32_t d = p.first_disc[b]; d < p.first_disc[b] + p.n_discs[b]; ++d)
+        {
+          s.disc_body.push_back(static_cast<std::uint32_t>(nb_new));
+          for (auto [to, from] : {std::pair{&s.disc_radius, &p.disc_radius}, {&s.disc_offset_x, &p.disc_offset_x},
+                                  {&s.disc_offset_y, &p.disc_offset_y}, {&s.disc_x, &p.disc_x},
+                                  {&s.disc_y, &p.disc_y}})
+            to->push_back((*from)[d]);
+        }
+    }
+  return s;
 }
 } // namespace geohybrid::dem

@@ -60,6 +60,14 @@ struct ParticleSet
   void reserve(std::size_t n_bodies, std::size_t n_discs);
 };
 
+/// The same bodies renumbered so that bodies close in space are close in memory: bodies are
+/// ordered by the cell of side `cell_size` holding their centre of mass, cells visited in Morton
+/// (Z) order, ties kept in the original order. Everything of a body travels with it (id, state,
+/// mass, its discs). The contact loop then finds a neighbour's data in cache: on the 40,000-disc
+/// benchmark a randomly numbered packing runs 35 % slower than a sorted one (bench/RESULTS.md).
+/// Generators that place particles at random (REDF, tank filling) sort before building a system.
+ParticleSet spatially_sorted(const ParticleSet &particles, double cell_size);
+
 /// Mass properties of the union of two overlapping discs, per unit density and thickness.
 struct TwoDiscGeometry
 {

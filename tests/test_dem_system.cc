@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -520,4 +522,72 @@ TEST(BadInput, TimeStepAndThreads)
   EXPECT_THROW(DemSystem(p, contact, no_threads), std::invalid_argument);
   no_threads.n_threads = -2;
   EXPECT_THROW(DemSystem(p, contact, no_threads), std::invalid_argument);
+}
+
+// Renumbering bodies in Morton order keeps every body exactly (found by its id, with its discs),
+// and brings neighbours close in memory: on a randomly numbered grid, the mean index distance
+// between neighbours falls by more than 10 (measured: 543, about n/3, before; 34 after).
+TEST(ParticleOrder, SpatialSortKeepsBodiesAndBringsNeighboursClose)
+{
+  constexpr int n_side = 40;
+  ParticleSet grid = grid_sample(n_side, n_side, 0.1, 7, 3, 2.0);
+  // Number the bodies at random.
+  std::vector<std::size_t> order(grid.n_bodies());
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(5));
+  ParticleSet shuffled;
+  for (std::size_t b : order)
+    {
+      const std::uint32_t d = grid.first_disc[b];
+      const Vec2 c(grid.x[b], grid.y[b]);
+      const std::size_t nb = grid.n_discs[b] == 1
+                               ? shuffled.add_disc(c, grid.disc_radius[d], density, static_cast<std::int64_t>(b))
+                               : shuffled.add_two_disc_cluster(c, grid.disc_radius[d], grid.disc_radius[d + 1],
+                                                               0.5 * r_max, 0.3, density, static_cast<std::int64_t>(b));
+      shuffled.vx[nb] = grid.vx[b];
+    }
+  const ParticleSet sorted = spatially_sorted(shuffled, 2.0 * r_max);
+  ASSERT_EQ(sorted.n_bodies(), shuffled.n_bodies());
+  ASSERT_EQ(sorted.n_discs_total(), shuffled.n_discs_total());
+  std::vector<std::size_t> index_of_id(shuffled.n_bodies());
+  for (std::size_t b = 0; b < shuffled.n_bodies(); ++b)
+    index_of_id[static_cast<std::size_t>(shuffled.body_id[b])] = b;
+  std::vector<bool> seen(sorted.n_bodies(), false);
+  for (std::size_t b = 0; b < sorted.n_bodies(); ++b)
+    {
+      const std::size_t a = index_of_id[static_cast<std::size_t>(sorted.body_id[b])];
+      ASSERT_FALSE(seen[a]);
+      seen[a] = true;
+      EXPECT_EQ(sorted.x[b], shuffled.x[a]);
+      EXPECT_EQ(sorted.y[b], shuffled.y[a]);
+      EXPECT_EQ(sorted.vx[b], shuffled.vx[a]);
+      EXPECT_EQ(sorted.mass[b], shuffled.mass[a]);
+      EXPECT_EQ(sorted.inertia[b], shuffled.inertia[a]);
+      ASSERT_EQ(sorted.n_discs[b], shuffled.n_discs[a]);
+      for (std::uint32_t k = 0; k < sorted.n_discs[b]; ++k)
+        {
+          const std::uint32_t d = sorted.first_disc[b] + k, e = shuffled.first_disc[a] + k;
+          EXPECT_EQ(sorted.disc_body[d], b);
+          EXPECT_EQ(sorted.disc_radius[d], shuffled.disc_radius[e]);
+          EXPECT_EQ(sorted.disc_x[d], shuffled.disc_x[e]);
+          EXPECT_EQ(sorted.disc_offset_y[d], shuffled.disc_offset_y[e]);
+        }
+    }
+  // Mean index distance between bodies whose centres are within 1.5 grid pitches.
+  const auto mean_neighbour_distance = [](const ParticleSet &p) {
+    double sum = 0.0;
+    std::size_t n = 0;
+    const double reach = 1.5 * 2.0 * r_max;
+    for (std::size_t a = 0; a < p.n_bodies(); ++a)
+      for (std::size_t b = a + 1; b < p.n_bodies(); ++b)
+        if (std::hypot(p.x[a] - p.x[b], p.y[a] - p.y[b]) < reach)
+          {
+            sum += static_cast<double>(b - a);
+            ++n;
+          }
+    return sum / static_cast<double>(n);
+  };
+  const double before = mean_neighbour_distance(shuffled), after = mean_neighbour_distance(sorted);
+  EXPECT_GT(before, 10.0 * after) << before << " -> " << after;
+  EXPECT_THROW(spatially_sorted(shuffled, 0.0), std::invalid_argument);
 }
