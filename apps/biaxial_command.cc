@@ -100,11 +100,19 @@ BiaxialCampaign parse_biaxial_campaign(ParameterHandler &prm, const std::string 
         for (const std::string &item : dealii::Utilities::split_string_list(sizes, ','))
           {
             const std::vector<std::string> pair = dealii::Utilities::split_string_list(item, ':');
+            double number[2] = {0.0, 0.0};
             std::size_t used[2] = {0, 0};
-            if (pair.size() == 2)
-              classes.push_back({std::stod(pair[0], &used[0]), std::stod(pair[1], &used[1])});
+            for (std::size_t i = 0; i < 2 && pair.size() == 2; ++i)
+              try
+                {
+                  number[i] = std::stod(pair[i], &used[i]);
+                }
+              catch (const std::exception &)
+                {
+                }
             if (pair.size() != 2 || used[0] != pair[0].size() || used[1] != pair[1].size())
               throw std::invalid_argument("'" + item + "' is not a 'size : fraction' pair of numbers");
+            classes.push_back({number[0], number[1]});
           }
         s.size_distribution = dem::SizeDistribution::fractions(classes);
       }

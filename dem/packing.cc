@@ -235,8 +235,11 @@ SizeDistribution SizeDistribution::fractions(std::vector<SizeClass> classes)
     }
   constexpr double sum_tolerance = 1e-3;
   if (std::abs(sum - 1.0) > sum_tolerance)
-    throw std::invalid_argument("size distribution: the area fractions sum to " + std::to_string(sum) +
-                                ", not 1 (within 1e-3)");
+    {
+      std::ostringstream message;
+      message << "size distribution: the area fractions sum to " << sum << ", not 1 (within " << sum_tolerance << ")";
+      throw std::invalid_argument(message.str());
+    }
   std::sort(classes.begin(), classes.end(),
             [](const SizeClass &a, const SizeClass &b) { return a.relative_size > b.relative_size; });
   for (std::size_t k = 1; k < classes.size(); ++k)

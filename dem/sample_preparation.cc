@@ -186,7 +186,7 @@ RedfStartingSizes redf_starting_sizes(const RedfSpec &s, double region_area, dou
       std::ostringstream message;
       message << "REDF: " << s.n_particles << " particles filling " << region << " at porosity "
               << s.target_porosity << " would be up to " << largest_extent << " m across, more than a fifth of "
-              << region_narrowest_width << " m; use more particles or a larger region";
+              << region_narrowest_width << " m; use more particles or a larger box";
       throw std::invalid_argument(message.str());
     }
   for (double &x : u)
@@ -294,14 +294,14 @@ void place_at_random(const RedfSpec &s, const std::vector<Vec2> &vertices, const
       if (!placed)
         throw std::invalid_argument("REDF: could not place particle " + std::to_string(k) + " of " +
                                     std::to_string(radii.size()) +
-                                    " at random without overlap; use fewer particles or a larger region");
+                                    " at random without overlap; use fewer particles or a larger box");
     }
 }
 
-RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &s, const RedfGrowth &growth,
+RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &s, const RedfGrowth &growing,
                               const std::function<void(double)> &progress)
 {
-  const auto &porosity = growth.porosity;
+  const auto &porosity = growing.porosity;
   // ---- growth with decrease of friction ----
   // Grow while the assembly is loose; once it jams (mean wall stress above the target) above
   // the target porosity, lower the growth friction so the grains rearrange, then grow again.
@@ -310,9 +310,9 @@ RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &s, const RedfGr
   double friction_deg = s.initial_growth_friction_deg >= 0.0 ? s.initial_growth_friction_deg
                                                             : s.particle_contact.friction_angle_deg;
   const auto use_friction = [&](double degrees) {
-    ContactParameters grown = s.particle_contact;
-    grown.friction_angle_deg = degrees;
-    system.set_particle_law(LinearContactLaw(grown));
+    ContactParameters growth = s.particle_contact;
+    growth.friction_angle_deg = degrees;
+    system.set_particle_law(LinearContactLaw(growth));
   };
   use_friction(friction_deg);
   std::uint64_t steps = 0, steps_jammed = 0;
@@ -321,7 +321,7 @@ RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &s, const RedfGr
   const double upper = s.target_porosity + 0.5 * s.porosity_tolerance;
   for (;;)
     {
-      const bool jammed = growth.jam_stress() > s.target_stress;
+      const bool jammed = growing.jam_stress() > s.target_stress;
       const double n = porosity();
       // Target porosity reached: the assembly is jammed or close to it (the friction is lowered
       // only while it is jammed above the target), so the servo stage below compacts it little.
@@ -333,7 +333,7 @@ RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &s, const RedfGr
       if (!jammed)
         {
           steps_jammed = 0;
-          growth.grow(1.0 + growth_per_step);
+          growing.grow(1.0 + growth_per_step);
         }
       else if (++steps_jammed % relax_steps_per_friction_drop == 0 &&
                unbalanced_force_ratio(system) < 0.05)
@@ -345,7 +345,7 @@ RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &s, const RedfGr
               std::ostringstream message;
               message << "REDF: the target porosity " << s.target_porosity << " cannot be reached: the assembly "
                       << "jams at porosity " << n << " even without friction (stress "
-                      << growth.jam_stress() << " Pa); choose a larger porosity or a lower stress";
+                      << growing.jam_stress() << " Pa); choose a larger porosity or a lower stress";
               throw std::runtime_error(message.str());
             }
           friction_deg = friction_deg > 0.5 ? 0.9 * friction_deg : 0.0;

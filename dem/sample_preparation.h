@@ -8,7 +8,7 @@
 //     the porosity is still above its target, the inter-particle friction used during growth is
 //     lowered step by step, so the grains rearrange into a denser state; growth stops at the
 //     target porosity;
-//  3. the material friction is restored and the four walls are servo-controlled to the target
+//  3. the material friction is restored and the walls are servo-controlled to the target
 //     isotropic stress until the sample is in equilibrium.
 //
 // The final particle sizes follow from the box, the number of particles and the porosity:
@@ -133,6 +133,6 @@ struct RedfGrowthResult
 /// above spec.target_porosity, lowering the growth friction step by step while the assembly is
 /// jammed above it; leaves the growth friction in force. Throws std::runtime_error if the target
 /// cannot be reached even without friction or after spec.max_steps steps.
-RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &spec, const RedfGrowth &growth,
+RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &spec, const RedfGrowth &growing,
                               const std::function<void(double)> &progress = {});
 } // namespace geohybrid::dem
