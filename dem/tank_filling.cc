@@ -125,6 +125,13 @@ void check_spec(const TankFillingSpec &t)
   if (!t.layer_porosities.empty() && t.layer_porosities.size() != t.n_layers)
     throw std::invalid_argument("tank filling: " + std::to_string(t.layer_porosities.size()) +
                                 " layer porosities given for " + std::to_string(t.n_layers) + " layers");
+  for (std::size_t k = 0; k < t.n_layers; ++k)
+    {
+      const double n = t.layer_porosities.empty() ? t.target_porosity : t.layer_porosities[k];
+      if (!(n >= 0.05 && n <= 0.8))
+        throw std::invalid_argument("tank filling: the target porosity " + std::to_string(n) + " of layer " +
+                                    std::to_string(k + 1) + " is outside [0.05, 0.8]");
+    }
   if (!(t.gravity > 0.0))
     throw std::invalid_argument("tank filling: gravity must be positive");
   if (!(t.growth_stress > 0.0))
