@@ -37,6 +37,10 @@ void declare_biaxial_parameters(ParameterHandler &prm)
   prm.declare_entry("size ratio", "0.5", Patterns::Double(0.05, 1.0),
                     "Smallest over largest particle size (uniform distribution); the sizes are scaled so "
                     "the particles fill the sample at the target porosity [-]");
+  prm.declare_entry("size distribution", "uniform", Patterns::Anything(),
+                    "'uniform' (radii uniform between 'size ratio' and 1) or size classes as relative "
+                    "size : area fraction pairs, e.g. '1.0:0.3, 0.75:0.4, 0.5:0.3' (fractions of the solid "
+                    "area, i.e. of the mass, summing to 1; sizes relative, scaled to fill the sample) [-]");
   prm.declare_entry("cluster diameter ratio", "0.9", Patterns::Double(0.1, 1.0),
                     "Small over large disc diameter in a cluster [-]");
   prm.declare_entry("cluster centre spacing", "0.95", Patterns::Double(0.01, 0.95),
@@ -86,7 +90,36 @@ BiaxialCampaign parse_biaxial_campaign(ParameterHandler &prm, const std::string 
   s.width = prm.get_double("width");
   s.height = prm.get_double("height");
   s.shape = prm.get("shape") == "disc" ? dem::ParticleShape::disc : dem::ParticleShape::two_disc_cluster;
-  s.size_ratio = prm.get_double("size ratio");
+  const std::string sizes = prm.get("size distribution");
+  if (sizes == "uniform")
+    s.size_distribution = dem::SizeDistribution::uniform(prm.get_double("size ratio"));
+  else
+    try
+      {
+        std::vector<dem::SizeDistribution::SizeClass> classes;
+        for (const std::string &item : dealii::Utilities::split_string_list(sizes, ','))
+          {
+            const std::vector<std::string> pair = dealii::Utilities::split_string_list(item, ':');
+            double number[2] = {0.0, 0.0};
+            std::size_t used[2] = {0, 0};
+            for (std::size_t i = 0; i < 2 && pair.size() == 2; ++i)
+              try
+                {
+                  number[i] = std::stod(pair[i], &used[i]);
+                }
+              catch (const std::exception &)
+                {
+                }
+            if (pair.size() != 2 || used[0] != pair[0].size() || used[1] != pair[1].size())
+              throw std::invalid_argument("'" + item + "' is not a 'size : fraction' pair of numbers");
+            classes.push_back({number[0], number[1]});
+          }
+        s.size_distribution = dem::SizeDistribution::fractions(classes);
+      }
+    catch (const std::exception &e)
+      {
+        throw std::invalid_argument(where + ": 'Sample/size distribution' = '" + sizes + "': " + e.what());
+      }
   s.cluster_diameter_ratio = prm.get_double("cluster diameter ratio");
   s.cluster_spacing = prm.get_double("cluster centre spacing");
   s.density = prm.get_double("density");

@@ -1,11 +1,13 @@
 #pragma once
-// Making particle sets: a loose lattice for gravity deposition, and reading/writing the particle
-// CSV format of `geohybrid dem` (x, y, radius, vx, vy, omega, optional cluster_id).
+// Making particle sets: a loose lattice for gravity deposition, reading/writing the particle
+// CSV format of `geohybrid dem` (x, y, radius, vx, vy, omega, optional cluster_id), and the size
+// distribution of generated samples.
 #include "particles.h"
 
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace geohybrid::dem
 {
@@ -63,5 +65,49 @@ public:
 
 private:
   std::uint64_t state_;
+};
+
+/// The size distribution of a generated sample, as a shape only: sizes are relative (large-disc
+/// radii divided by any reference size), because REDF and tank filling scale them so that the
+/// particles fill their region at the target porosity. Two kinds:
+///  - uniform(min_ratio): radii uniform in number between min_ratio and 1 (smallest / largest);
+///  - fractions({{relative size, area fraction}, ...}): discrete size classes, like a grading
+///    curve read at its sieve sizes; each class has one size and its share of the solid area,
+///    which in 2D with one density is its share of the mass. A class of the sieve interval
+///    [d_i, d_i+1] is best given the interval's mean size.
+class SizeDistribution
+{
+public:
+  struct SizeClass
+  {
+    double relative_size; ///< large-disc radius of the class, relative [-]
+    double area_fraction; ///< share of the solid area (= of the mass) [-]
+  };
+
+  /// Throws std::invalid_argument unless 0 < min_ratio <= 1.
+  static SizeDistribution uniform(double min_ratio);
+  /// Throws std::invalid_argument for no class, a size or fraction that is not positive, two
+  /// classes of the same size, or fractions that do not sum to 1 within 1e-3 (they are then
+  /// rescaled to sum to 1 exactly).
+  static SizeDistribution fractions(std::vector<SizeClass> classes);
+
+  bool is_uniform() const { return classes_.empty(); }
+  double min_ratio() const { return min_ratio_; } ///< uniform only
+  /// The classes by decreasing size (fractions only).
+  const std::vector<SizeClass> &classes() const { return classes_; }
+
+  /// n relative sizes. Uniform: n draws from `random`, in the order drawn. Fractions: by
+  /// decreasing size (`random` is not used); the number of particles of each class is the
+  /// nearest to its area fraction that n allows (largest remainder), so each class's area share
+  /// is reproduced within about one particle; throws std::invalid_argument if a class would get
+  /// no particle.
+  std::vector<double> relative_sizes(std::size_t n, UniformRandom &random) const;
+
+  /// E.g. "uniform 0.5" or "1:0.6, 0.5:0.4".
+  std::string to_string() const;
+
+private:
+  double min_ratio_ = 1.0;
+  std::vector<SizeClass> classes_;
 };
 } // namespace geohybrid::dem

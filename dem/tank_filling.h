@@ -1,0 +1,105 @@
+#pragma once
+// Filling a tank with soil layer by layer, as sand is placed in a laboratory pull-out tank: each
+// lift is brought to its target density between two levels, then the next one is placed on it.
+// Here each layer is made by REDF (sample_preparation.h) and settles under gravity:
+//
+//  1. the layer's particles are placed at random, at a fraction of their final size, above the
+//     layer's bottom level, clear of the grains already there;
+//  2. without gravity, under a temporary lid wall, the layer's particles grow; while the layer is
+//     jammed (lid stress above the growth stress: the lift's compaction stress) above its target
+//     porosity, the growth friction is lowered step by step. Growth stops when the slab between
+//     the layer's two levels is at the target porosity, counting every grain in it, each cut
+//     exactly at the levels (slab_porosity). The grains below the slab are fixed meanwhile (a
+//     compacted lift is nearly rigid under the next one); those of the layer below that reach
+//     into the slab stay free and rearrange with the new ones;
+//  3. a flat lid loosens the packing along it over about one particle size, so the lid of every
+//     layer but the last stands one such band above the layer's top level: the loose band lies
+//     in the next layer's slab, whose grains grow into its hollows (the last layer's lid is at
+//     the fill's height);
+//  4. the material friction is restored, the lid is taken away, every grain is freed and the
+//     whole fill settles under gravity, walls fixed, with local damping, until equilibrium.
+//
+// The result is a DemSystem in equilibrium under gravity, with the porosity of each layer's slab
+// at the end of its growth and in the final fill (settling under the layers above compacts the
+// lower ones a little).
+#include "dem_system.h"
+#include "packing.h"
+
+#include <functional>
+#include <vector>
+
+namespace geohybrid::dem
+{
+struct TankFillingSpec
+{
+  double width = 1.0;                 ///< inner width of the tank [m]
+  double height = 0.5;                ///< height of the fill [m]; each layer height / n_layers thick
+  std::size_t n_layers = 5;
+  std::size_t n_particles = 20000;    ///< in the whole fill (see TankLayer for each layer's share)
+  ParticleShape shape = ParticleShape::two_disc_cluster;
+  /// Relative sizes, scaled in each layer so that its particles fill it at its target porosity.
+  SizeDistribution size_distribution = SizeDistribution::uniform(0.5);
+  double cluster_diameter_ratio = 0.9; ///< small / large disc diameter in a cluster [-]
+  double cluster_spacing = 0.95;       ///< centre spacing / large diameter; 0.95 = touching [-]
+  double density = 2650.0;             ///< [kg/m^3]
+  double target_porosity = 0.2;        ///< of every layer, unless layer_porosities is given [-]
+  std::vector<double> layer_porosities; ///< one per layer, bottom first; empty = target_porosity
+  double porosity_tolerance = 0.005;   ///< growth stops at most half of it above the target [-]
+  /// Lid stress above which a growing layer counts as jammed: REDF's growth stress, the
+  /// compaction stress of a lift. Best above the weight of the fill on the base,
+  /// (1 - n) rho g height, so that no layer is later loaded beyond it [Pa].
+  double growth_stress = 10e3;
+  ContactParameters particle_contact;  ///< the material (friction restored after each growth)
+  /// Friction angle at the start of each layer's growth; negative = the material's [deg].
+  double initial_growth_friction_deg = -1.0;
+  ContactParameters wall_contact;      ///< the tank's walls and the lid
+  double gravity = 9.81;               ///< [m/s^2], pointing down (-y)
+  double local_damping = 0.7;          ///< during growth and settling [-]
+  double equilibrium_unbalanced_ratio = 1e-4; ///< settling stops below this unbalanced-force ratio
+  std::uint64_t seed = 1;
+  int n_threads = 1;
+  std::uint64_t max_steps_per_layer = 2'000'000; ///< growth and settling of one layer
+};
+
+/// The tank's walls: indices into DemSystem::walls(). The base spans [0, width] at y = 0, the
+/// side walls x = 0 and x = width; the lid, used while a layer grows, ends parked above the fill
+/// (it touches nothing).
+struct TankWalls
+{
+  std::size_t base, right, lid, left;
+};
+
+struct TankLayer
+{
+  double bottom = 0.0, top = 0.0;     ///< levels of the layer's slab [m]
+  /// The particles placed for this layer: bodies [first_body, first_body + n_bodies). Their
+  /// number is in proportion to the space the layer fills (the first layer fills its band too,
+  /// the last one the band of the layer below), so that all layers have the same sizes.
+  std::size_t first_body = 0, n_bodies = 0;
+  double target_porosity = 0.0;
+  double porosity_grown = 0.0;        ///< slab_porosity of its slab at the end of its growth [-]
+  double porosity = 0.0;              ///< slab_porosity of its slab in the final fill [-]
+  double growth_friction_deg = 0.0;   ///< the lowest friction used in its growth
+  std::uint64_t n_growth_steps = 0, n_settling_steps = 0;
+};
+
+struct FilledTank
+{
+  DemSystem system;    ///< under gravity, in equilibrium, walls fixed
+  TankWalls walls;
+  std::vector<TankLayer> layers; ///< bottom first
+};
+
+/// Fills the tank. `progress` (optional) is called now and then with a fraction in [0, 1].
+/// Throws std::invalid_argument for a spec that cannot work (no layer, a porosity outside
+/// [0.05, 0.8], layers too thin for their particles) and std::runtime_error when a layer cannot
+/// reach its porosity or the fill does not settle within max_steps_per_layer, naming the layer.
+FilledTank fill_tank_in_layers(const TankFillingSpec &spec, const std::function<void(double)> &progress = {});
+
+/// Porosity of the horizontal slab y in [y_bottom, y_top], x in [x_min, x_max]: one minus the
+/// solid area inside it over its area, each disc cut exactly at the slab's top and bottom (discs
+/// are taken to lie within [x_min, x_max], as between a tank's side walls). The discs of a
+/// cluster count in proportion to their areas, scaled to the cluster's area (so the lens where
+/// they overlap is not counted twice).
+double slab_porosity(const ParticleSet &particles, double x_min, double x_max, double y_bottom, double y_top);
+} // namespace geohybrid::dem
