@@ -431,7 +431,8 @@ int run_calibrate_command(const std::string &input_file, bool resume)
   summary.set("n_particles", static_cast<double>(campaign.sample.n_particles));
   summary.set("wall_time_s", wall_time);
   summary.write(out / "summary.json");
-  std::cout << "geohybrid calibrate: targets met after " << result.iterations.size() << " iterations: friction angle "
+  std::cout << "geohybrid calibrate: targets met after " << result.iterations.size()
+            << (result.iterations.size() == 1 ? " iteration" : " iterations") << ": friction angle "
             << number(particle.friction_angle_deg, 6) << " deg, kn " << number(particle.normal_stiffness, 6)
             << " N/m/m, ks " << number(particle.shear_stiffness, 6) << " N/m/m; " << number(wall_time, 4)
             << " s\nresults in " << out.string() << " (" << input.fragment_file
