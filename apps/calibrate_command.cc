@@ -8,8 +8,8 @@
 //   reuse   one REDF sample per confining stress, made once with the starting parameters, given
 //           each guess's contact laws and brought back to equilibrium (dem/sample_reuse.h). One
 //           fabric for every iteration, so the response varies smoothly with the parameters: on
-//           a 200-cluster sample a 1 % change of kn moved phi' by 0.5 deg this way, against 1.3
-//           deg and E by 40 % with a new sample (which is another random assembly).
+//           a 200-cluster sample a 1 % change of kn moved phi' by 0.5 to 1 deg and E by 1 % this
+//           way, against 1.3 deg and 40 % with a new sample (which is another random assembly).
 //   remake  a new REDF sample per iteration, made with the guess's parameters, exactly what
 //           `geohybrid biaxial` does with them; the scatter between samples then adds to the
 //           measurement, which is fine on large samples only.
