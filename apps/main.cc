@@ -3,11 +3,13 @@
 //   geohybrid dem FILE.prm                 a DEM scene (deposition, impacts, any walls)
 //   geohybrid dem FILE.prm --resume        continue it from its last checkpoint
 //   geohybrid biaxial FILE.prm             REDF samples in biaxial compression, friction angle, E
+//   geohybrid calibrate FILE.prm           contact friction, kn, ks/kn fitted to target phi', E (nu)
 //   geohybrid COMMAND --print-parameters   every parameter of COMMAND with default, unit, doc
 //
 // Input files are read with deal.II's ParameterHandler (.prm or .json). Errors in the input stop
 // the run before anything is written, with a message naming the file and the parameter.
 #include "apps/biaxial_command.h"
+#include "apps/calibrate_command.h"
 #include "apps/dem_command.h"
 
 #include <deal.II/base/parameter_handler.h>
@@ -34,6 +36,8 @@ const std::map<std::string, Command> &commands()
              geohybrid::apps::declare_dem_parameters, geohybrid::apps::run_dem_command}},
     {"biaxial", {"biaxial compression of REDF samples at several confining stresses (calibration test)",
                  geohybrid::apps::declare_biaxial_parameters, geohybrid::apps::run_biaxial_command}},
+    {"calibrate", {"fit contact friction, kn and ks/kn to a target friction angle, E (and nu) by biaxial runs",
+                   geohybrid::apps::declare_calibrate_parameters, geohybrid::apps::run_calibrate_command}},
   };
   return table;
 }
