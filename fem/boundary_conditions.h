@@ -1,6 +1,7 @@
 #pragma once
 // What holds and loads the soil's boundary, as deal.II Functions of position and pseudo-time t
-// (Function::set_time), so that one description serves any loading programme: a prescribed
+// (the solver calls Function::set_time on them, so a Function shared with the caller sees the
+// solver's time), so that one description serves any loading programme: a prescribed
 // displacement on some components, a traction vector, or a pressure normal to the boundary.
 // Boundaries are named by the mesh's boundary ids (GridGenerator's colorize, or gmsh physical
 // lines).
