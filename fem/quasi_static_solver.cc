@@ -368,6 +368,11 @@ LoadSteppingReport QuasiStaticSolver::advance_to(double end_time)
       increment = 0.5 * step;
       if (increment < settings_.stepping.minimum_increment)
         {
+          // Leave the forces and trial states of the last converged step, not of the failed
+          // iterate, so that reactions and output still describe a solution.
+          increment_ = 0.0;
+          increment_relevant_ = increment_;
+          assemble(time_, homogeneous_constraints_);
           std::ostringstream message;
           message << "quasi-static solver: no equilibrium found from t = " << time_ << " to t = " << time_ + step
                   << " with the increment at its minimum " << settings_.stepping.minimum_increment << " (after "
