@@ -1,0 +1,50 @@
+#pragma once
+// Plane-strain bookkeeping shared by the soil models: moving between the in-plane 2x2 tensors the
+// finite elements see and the 3x3 tensors the constitutive laws need, and the spectral
+// decomposition of a plane-strain stress. In plane strain z is always a principal direction, so
+// the decomposition is the closed-form one of the in-plane 2x2 block plus sigma_zz.
+#include "fem/conventions.h"
+
+#include <deal.II/base/tensor.h>
+
+#include <array>
+
+namespace geohybrid::fem
+{
+/// The in-plane strain as a 3D strain with eps_zz = eps_xz = eps_yz = 0.
+dealii::SymmetricTensor<2, 3> embed_in_3d(const StrainTensor &in_plane);
+
+/// The xx, yy, xy block of a 3D symmetric tensor.
+dealii::SymmetricTensor<2, 2> in_plane_part(const dealii::SymmetricTensor<2, 3> &tensor);
+
+/// The in-plane block C_ijkl, i, j, k, l in {x, y}, of a 3D stiffness: the plane-strain tangent.
+TangentTensor in_plane_part(const dealii::SymmetricTensor<4, 3> &stiffness);
+
+/// Principal values and directions of a plane-strain stress. Slots 0 and 1 are the in-plane
+/// principal directions a and b (value_a >= value_b), slot 2 is z.
+struct PlaneStrainPrincipalFrame
+{
+  std::array<double, 3> values;     ///< (sigma_a, sigma_b, sigma_zz)
+  dealii::Tensor<1, 2> direction_a; ///< unit vector of sigma_a
+  dealii::Tensor<1, 2> direction_b; ///< unit vector of sigma_b, direction_a rotated by +90 degrees
+};
+
+PlaneStrainPrincipalFrame principal_frame(const StressTensor &stress);
+
+/// The stress with the frame's directions and the given principal values (slots as in the frame).
+StressTensor stress_from_principal(const PlaneStrainPrincipalFrame &frame,
+                                   const std::array<double, 3> &values);
+
+/// The in-plane consistent tangent of an isotropic stress update sigma = F(sigma_trial),
+/// sigma_trial = sigma_n + C : delta eps, from its derivative in principal space (de Souza Neto,
+/// Peric & Owen, Computational Methods for Plasticity, 2008, appendix A; Clausen, Damkilde &
+/// Andersen, Comput. Struct. 84, 2006):
+///   C_ep = sum_ab D_ab E_a (x) E_b + 2 c_s M (x) M,   E_a = n_a (x) n_a,  M = sym(n_a (x) n_b),
+/// where D_ab = d(sigma_a)/d(eps_trial_b) (slots of the frame) and the in-plane shear coefficient
+/// c_s = 2 G (sigma_a - sigma_b) / (sigma_trial_a - sigma_trial_b) accounts for the rotation of
+/// the principal axes; when the two trial values coincide it takes its limit D_aa - D_ab.
+TangentTensor tangent_from_principal(const PlaneStrainPrincipalFrame &trial_frame,
+                                     const std::array<double, 3> &returned_values,
+                                     const dealii::Tensor<2, 3> &principal_tangent,
+                                     double shear_modulus);
+} // namespace geohybrid::fem

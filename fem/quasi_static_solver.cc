@@ -1,0 +1,402 @@
+#include "quasi_static_solver.h"
+
+#include "fem/constitutive/parameter_check.h"
+#include "fem/constitutive/plane_strain_tensors.h"
+#include "fem/vtu_output.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/petsc_precondition.h>
+#include <deal.II/lac/petsc_solver.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace geohybrid::fem
+{
+void QuasiStaticSettings::validate(const std::string &where) const
+{
+  require_parameter(density >= 0.0 && std::isfinite(density), where, "density", density,
+                    "must be zero or positive [kg/m^3]");
+  require_parameter(std::isfinite(gravity.norm()), where, "gravity", gravity.norm(), "must be finite [m/s^2]");
+  require_parameter(newton.relative_tolerance > 0.0, where, "Newton relative tolerance",
+                    newton.relative_tolerance, "must be positive [-]");
+  require_parameter(newton.absolute_tolerance >= 0.0, where, "Newton absolute tolerance",
+                    newton.absolute_tolerance, "must be zero or positive [N/m]");
+  require_parameter(newton.max_iterations >= 1, where, "Newton maximum iterations", newton.max_iterations,
+                    "must be at least 1");
+  require_parameter(linear_solver.relative_tolerance > 0.0 && linear_solver.relative_tolerance < 1.0, where,
+                    "linear solver relative tolerance", linear_solver.relative_tolerance, "must lie in (0, 1) [-]");
+  require_parameter(linear_solver.amg_strong_threshold > 0.0 && linear_solver.amg_strong_threshold < 1.0, where,
+                    "AMG strong threshold", linear_solver.amg_strong_threshold, "must lie in (0, 1) [-]");
+  require_parameter(stepping.increment > 0.0, where, "load increment", stepping.increment, "must be positive [-]");
+  require_parameter(stepping.minimum_increment > 0.0 && stepping.minimum_increment <= stepping.increment, where,
+                    "minimum load increment", stepping.minimum_increment,
+                    "must be positive and at most the load increment [-]");
+}
+
+QuasiStaticSolver::QuasiStaticSolver(const dealii::parallel::distributed::Triangulation<dim> &mesh,
+                                     const SoilModel &soil, const BoundaryConditions &boundary_conditions,
+                                     const QuasiStaticSettings &settings)
+  : soil_(soil)
+  , boundary_conditions_(boundary_conditions)
+  , settings_(settings)
+  , space_(mesh, settings.element_degree)
+{
+  settings_.validate("quasi-static solver");
+  boundary_conditions_.validate(mesh, "quasi-static solver");
+  material_points_.initialise(mesh, space_.cell_quadrature().size());
+
+  // The DoFs with a prescribed displacement are the same at every step; only their values change.
+  homogeneous_constraints_ = space_.hanging_node_constraints();
+  for (const auto &d : boundary_conditions_.displacements)
+    dealii::VectorTools::interpolate_boundary_values(space_.mapping(), space_.dof_handler(), d.boundary_id,
+                                                     dealii::Functions::ZeroFunction<dim>(dim),
+                                                     homogeneous_constraints_,
+                                                     dealii::ComponentMask(std::vector<bool>{d.constrain_x, d.constrain_y}));
+  homogeneous_constraints_.close();
+  x_component_dofs_ = dealii::DoFTools::extract_dofs(space_.dof_handler(), dealii::ComponentMask(std::vector<bool>{true, false}));
+
+  const auto &owned = space_.locally_owned_dofs();
+  const auto &relevant = space_.locally_relevant_dofs();
+  const MPI_Comm comm = space_.communicator();
+  dealii::DynamicSparsityPattern pattern(relevant);
+  dealii::DoFTools::make_sparsity_pattern(space_.dof_handler(), pattern, homogeneous_constraints_, false);
+  dealii::SparsityTools::distribute_sparsity_pattern(pattern, owned, comm, relevant);
+  tangent_.reinit(owned, owned, pattern, comm);
+  for (auto *v : {&newton_rhs_, &residual_, &internal_force_, &external_force_, &correction_, &increment_,
+                  &displacement_owned_})
+    v->reinit(owned, comm);
+  increment_relevant_.reinit(owned, relevant, comm);
+  displacement_.reinit(owned, relevant, comm);
+}
+
+void QuasiStaticSolver::set_initial_stress(const std::function<StressTensor(const dealii::Point<dim> &)> &stress,
+                                           const std::string &description)
+{
+  dealii::FEValues<dim> fe_values(space_.mapping(), space_.fe(), space_.cell_quadrature(),
+                                  dealii::update_quadrature_points);
+  std::string violation;
+  for (const auto &cell : space_.dof_handler().active_cell_iterators())
+    if (cell->is_locally_owned())
+      {
+        fe_values.reinit(cell);
+        auto points = material_points_.at(cell);
+        for (unsigned int q = 0; q < points.size(); ++q)
+          {
+            const auto &x = fe_values.quadrature_point(q);
+            const StressTensor sigma = stress(x);
+            const double f = soil_.yield_function(sigma);
+            if (violation.empty() && f > 1e-9 * (sigma.norm() + 1.0))
+              {
+                std::ostringstream message;
+                message << description << " lies outside the soil's yield surface at (" << x[0] << ", " << x[1]
+                        << ") m: sigma_xx = " << sigma[0][0] << ", sigma_yy = " << sigma[1][1]
+                        << ", sigma_zz = " << sigma[2][2] << " Pa, yield function " << f
+                        << " Pa > 0 (for a geostatic state, K0 is too far from 1)";
+                violation = message.str();
+              }
+            points[q]->stress = points[q]->trial_stress = sigma;
+          }
+      }
+  // Every rank must throw, or the others would wait for it in the next collective call.
+  if (dealii::Utilities::MPI::max(violation.empty() ? 0 : 1, space_.communicator()) > 0)
+    throw std::invalid_argument(violation.empty() ? description + " lies outside the soil's yield surface on another MPI rank"
+                                                  : violation);
+}
+
+void QuasiStaticSolver::set_initial_stress(const GeostaticStress &geostatic)
+{
+  geostatic.validate("geostatic stress");
+  set_initial_stress([&](const dealii::Point<dim> &x) { return geostatic.stress_at(x); },
+                     "the geostatic stress (K0 = " + std::to_string(geostatic.k0) + ")");
+}
+
+dealii::AffineConstraints<double> QuasiStaticSolver::step_constraints(double new_time) const
+{
+  // The increment of each prescribed displacement from the current (converged) one.
+  dealii::AffineConstraints<double> constraints = space_.hanging_node_constraints();
+  for (const auto &d : boundary_conditions_.displacements)
+    {
+      std::map<dealii::types::global_dof_index, double> values;
+      const dealii::Functions::ZeroFunction<dim> zero(dim);
+      if (d.displacement)
+        d.displacement->set_time(new_time);
+      dealii::VectorTools::interpolate_boundary_values(space_.mapping(), space_.dof_handler(), d.boundary_id,
+                                                       d.displacement ? static_cast<const dealii::Function<dim> &>(*d.displacement) : zero, values,
+                                                       dealii::ComponentMask(std::vector<bool>{d.constrain_x, d.constrain_y}));
+      for (const auto &[dof, value] : values)
+        if (!constraints.is_constrained(dof))
+          {
+            constraints.add_line(dof);
+            constraints.set_inhomogeneity(dof, value - displacement_[dof]);
+          }
+    }
+  constraints.close();
+  return constraints;
+}
+
+void QuasiStaticSolver::assemble(double time, const dealii::AffineConstraints<double> &constraints)
+{
+  tangent_ = 0.0;
+  for (auto *v : {&newton_rhs_, &residual_, &internal_force_, &external_force_})
+    *v = 0.0;
+  for (auto &t : boundary_conditions_.tractions)
+    t.traction->set_time(time);
+  for (auto &p : boundary_conditions_.pressures)
+    p.pressure->set_time(time);
+
+  const auto &fe = space_.fe();
+  dealii::FEValues<dim> fe_values(space_.mapping(), fe, space_.cell_quadrature(),
+                                  dealii::update_values | dealii::update_gradients | dealii::update_JxW_values);
+  dealii::FEFaceValues<dim> face_values(space_.mapping(), fe, space_.face_quadrature(),
+                                        dealii::update_values | dealii::update_quadrature_points |
+                                          dealii::update_normal_vectors | dealii::update_JxW_values);
+  const dealii::FEValuesExtractors::Vector u(0);
+  const unsigned int n_dofs = fe.n_dofs_per_cell(), n_q = space_.cell_quadrature().size();
+  dealii::FullMatrix<double> cell_tangent(n_dofs, n_dofs);
+  dealii::Vector<double> cell_internal(n_dofs), cell_external(n_dofs), cell_rhs(n_dofs);
+  std::vector<dealii::types::global_dof_index> dof_indices(n_dofs);
+  std::vector<StrainTensor> strain_increments(n_q);
+  std::vector<StrainTensor> shape_strains(n_dofs);
+  const dealii::Tensor<1, dim> body_force = settings_.density * settings_.gravity;
+
+  for (const auto &cell : space_.dof_handler().active_cell_iterators())
+    if (cell->is_locally_owned())
+      {
+        fe_values.reinit(cell);
+        cell_tangent = 0.0;
+        cell_internal = 0.0;
+        cell_external = 0.0;
+        fe_values[u].get_function_symmetric_gradients(increment_relevant_, strain_increments);
+        auto points = material_points_.at(cell);
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const StressUpdate update = soil_.update(points[q]->stress, strain_increments[q]);
+            points[q]->trial_stress = update.stress;
+            points[q]->trial_plastic_strain = points[q]->plastic_strain + update.plastic_strain_increment;
+            points[q]->trial_region = update.region;
+            const auto in_plane_stress = in_plane_part(update.stress);
+            const double JxW = fe_values.JxW(q);
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              shape_strains[i] = fe_values[u].symmetric_gradient(i, q);
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              {
+                cell_internal(i) += (in_plane_stress * shape_strains[i]) * JxW;
+                cell_external(i) += (fe_values[u].value(i, q) * body_force) * JxW;
+                const auto stress_of_i = shape_strains[i] * update.tangent;
+                for (unsigned int j = 0; j < n_dofs; ++j)
+                  cell_tangent(i, j) += (stress_of_i * shape_strains[j]) * JxW;
+              }
+          }
+        for (const auto face : cell->face_indices())
+          if (cell->at_boundary(face))
+            {
+              const auto id = cell->face(face)->boundary_id();
+              for (const auto &load : boundary_conditions_.tractions)
+                if (load.boundary_id == id)
+                  {
+                    face_values.reinit(cell, face);
+                    for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
+                      {
+                        dealii::Tensor<1, dim> t;
+                        for (unsigned int c = 0; c < dim; ++c)
+                          t[c] = load.traction->value(face_values.quadrature_point(q), c);
+                        for (unsigned int i = 0; i < n_dofs; ++i)
+                          cell_external(i) += (face_values[u].value(i, q) * t) * face_values.JxW(q);
+                      }
+                  }
+              for (const auto &load : boundary_conditions_.pressures)
+                if (load.boundary_id == id)
+                  {
+                    face_values.reinit(cell, face);
+                    for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
+                      {
+                        const dealii::Tensor<1, dim> t =
+                          -load.pressure->value(face_values.quadrature_point(q)) * face_values.normal_vector(q);
+                        for (unsigned int i = 0; i < n_dofs; ++i)
+                          cell_external(i) += (face_values[u].value(i, q) * t) * face_values.JxW(q);
+                      }
+                  }
+            }
+        cell->get_dof_indices(dof_indices);
+        cell_rhs = cell_external;
+        cell_rhs -= cell_internal;
+        constraints.distribute_local_to_global(cell_tangent, cell_rhs, dof_indices, tangent_, newton_rhs_, true);
+        homogeneous_constraints_.distribute_local_to_global(cell_rhs, dof_indices, residual_);
+        internal_force_.add(dof_indices, cell_internal);
+        external_force_.add(dof_indices, cell_external);
+      }
+  tangent_.compress(dealii::VectorOperation::add);
+  for (auto *v : {&newton_rhs_, &residual_, &internal_force_, &external_force_})
+    v->compress(dealii::VectorOperation::add);
+}
+
+namespace
+{
+struct LinearSolverFailure
+{
+  std::string message;
+};
+} // namespace
+
+unsigned int QuasiStaticSolver::solve_linear_system(const dealii::AffineConstraints<double> &constraints)
+{
+  correction_ = 0.0;
+  unsigned int n_iterations = 0;
+  const double rhs_norm = newton_rhs_.l2_norm();
+  if (rhs_norm > 0.0)
+    {
+      const bool symmetric = soil_.has_symmetric_tangent();
+      // PETSc's CG measures the preconditioned residual, whose scale is not the force's, so the
+      // stop is a reduction of whatever norm the Krylov method reports (GMRES is right
+      // preconditioned and reports the true residual).
+      const auto &linear = settings_.linear_solver;
+      dealii::ReductionControl control(linear.max_iterations, 1e-300, linear.relative_tolerance);
+      dealii::PETScWrappers::PreconditionBoomerAMG::AdditionalData amg_data;
+      amg_data.symmetric_operator = symmetric;
+      amg_data.strong_threshold = linear.amg_strong_threshold;
+      amg_data.aggressive_coarsening_num_levels = linear.amg_aggressive_coarsening_levels;
+      dealii::PETScWrappers::PreconditionBoomerAMG amg(tangent_, amg_data);
+      try
+        {
+          if (symmetric)
+            {
+              dealii::PETScWrappers::SolverCG cg(control, space_.communicator());
+              cg.solve(tangent_, correction_, newton_rhs_, amg);
+            }
+          else
+            {
+              dealii::PETScWrappers::SolverGMRES gmres(control, space_.communicator(),
+                                                       dealii::PETScWrappers::SolverGMRES::AdditionalData(200, true));
+              gmres.solve(tangent_, correction_, newton_rhs_, amg);
+            }
+        }
+      catch (const dealii::SolverControl::NoConvergence &e)
+        {
+          std::ostringstream message;
+          message << "the linear solver (" << (symmetric ? "CG" : "GMRES") << " + BoomerAMG) did not converge: residual "
+                  << e.last_residual << " after " << e.last_step << " iterations";
+          throw LinearSolverFailure{message.str()};
+        }
+      n_iterations = control.last_step();
+    }
+  constraints.distribute(correction_);
+  return n_iterations;
+}
+
+QuasiStaticSolver::NewtonOutcome QuasiStaticSolver::solve_step(double new_time)
+{
+  NewtonOutcome outcome;
+  const dealii::AffineConstraints<double> first_constraints = step_constraints(new_time);
+  double largest_prescribed_increment = 0.0;
+  for (const auto &line : first_constraints.get_lines())
+    largest_prescribed_increment = std::max(largest_prescribed_increment, std::abs(line.inhomogeneity));
+  const bool moves_boundary =
+    dealii::Utilities::MPI::max(largest_prescribed_increment, space_.communicator()) > 0.0;
+
+  increment_ = 0.0;
+  for (unsigned int iteration = 0;; ++iteration)
+    {
+      increment_relevant_ = increment_;
+      const auto &constraints = iteration == 0 ? first_constraints : homogeneous_constraints_;
+      assemble(new_time, constraints);
+      const double residual = residual_.l2_norm();
+      const double reference = std::max(internal_force_.l2_norm(), external_force_.l2_norm());
+      outcome.relative_residuals.push_back(reference > 0.0 ? residual / reference : residual);
+      if (!std::isfinite(residual))
+        {
+          outcome.failure = "the out-of-balance force is not finite after " + std::to_string(iteration) + " iterations";
+          return outcome;
+        }
+      // With prescribed boundary motion, the first residual is that of the old displacement.
+      if ((iteration > 0 || !moves_boundary) &&
+          residual <= settings_.newton.relative_tolerance * reference + settings_.newton.absolute_tolerance)
+        {
+          outcome.converged = true;
+          outcome.n_iterations = iteration;
+          return outcome;
+        }
+      if (iteration == settings_.newton.max_iterations)
+        {
+          std::ostringstream message;
+          message << "Newton's method did not converge in " << iteration << " iterations: out-of-balance force "
+                  << residual << " N/m against forces of " << reference << " N/m (relative "
+                  << residual / reference << ", tolerance " << settings_.newton.relative_tolerance << ")";
+          outcome.failure = message.str();
+          return outcome;
+        }
+      try
+        {
+          outcome.n_linear_iterations += solve_linear_system(constraints);
+        }
+      catch (const LinearSolverFailure &failure)
+        {
+          outcome.failure = failure.message;
+          return outcome;
+        }
+      increment_ += correction_;
+    }
+}
+
+LoadSteppingReport QuasiStaticSolver::advance_to(double end_time)
+{
+  LoadSteppingReport report;
+  double increment = settings_.stepping.increment;
+  const double time_tolerance = 1e-12 * std::max(1.0, std::abs(end_time));
+  while (time_ < end_time - time_tolerance)
+    {
+      const double step = std::min(increment, end_time - time_);
+      const NewtonOutcome outcome = solve_step(time_ + step);
+      if (outcome.converged)
+        {
+          displacement_owned_ += increment_;
+          displacement_ = displacement_owned_;
+          material_points_.commit();
+          time_ += step;
+          report.steps.push_back(
+            {time_, step, outcome.n_iterations, outcome.n_linear_iterations, outcome.relative_residuals});
+          // After a cutback, grow back towards the requested increment once steps converge again.
+          increment = std::min(2.0 * step, settings_.stepping.increment);
+          continue;
+        }
+      ++report.n_cutbacks;
+      increment = 0.5 * step;
+      if (increment < settings_.stepping.minimum_increment)
+        {
+          // Leave the forces and trial states of the last converged step, not of the failed
+          // iterate, so that reactions and output still describe a solution.
+          increment_ = 0.0;
+          increment_relevant_ = increment_;
+          assemble(time_, homogeneous_constraints_);
+          std::ostringstream message;
+          message << "quasi-static solver: no equilibrium found from t = " << time_ << " to t = " << time_ + step
+                  << " with the increment at its minimum " << settings_.stepping.minimum_increment << " (after "
+                  << report.n_cutbacks << " cutbacks): " << outcome.failure
+                  << ". The load may exceed what the soil can carry (collapse), or the minimum increment be too large.";
+          throw ConvergenceFailure(message.str(), time_);
+        }
+    }
+  return report;
+}
+
+dealii::Tensor<1, dim> QuasiStaticSolver::boundary_reaction(dealii::types::boundary_id boundary_id) const
+{
+  const dealii::IndexSet boundary_dofs =
+    dealii::DoFTools::extract_boundary_dofs(space_.dof_handler(), dealii::ComponentMask(), {boundary_id});
+  dealii::Tensor<1, dim> reaction;
+  for (const auto dof : boundary_dofs)
+    if (space_.locally_owned_dofs().is_element(dof))
+      reaction[x_component_dofs_.is_element(dof) ? 0 : 1] += internal_force_[dof] - external_force_[dof];
+  return dealii::Utilities::MPI::sum(reaction, space_.communicator());
+}
+
+std::string QuasiStaticSolver::write_vtu(const std::string &directory, const std::string &basename, unsigned int step)
+{
+  return write_soil_vtu(space_, displacement_, material_points_, directory, basename, step);
+}
+} // namespace geohybrid::fem

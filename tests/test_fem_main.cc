@@ -1,0 +1,18 @@
+// GoogleTest main for the deal.II continuum tests: MPI and PETSc must be initialised before any
+// test and finalised after all of them. Under mpirun only rank 0 prints; the other ranks still
+// return a failing exit code if one of their checks fails.
+#include <deal.II/base/mpi.h>
+
+#include <gtest/gtest.h>
+
+int main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ::testing::InitGoogleTest(&argc, argv);
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+    {
+      auto &listeners = ::testing::UnitTest::GetInstance()->listeners();
+      delete listeners.Release(listeners.default_result_printer());
+    }
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,217 @@
+// The continuum on two MPI ranks (ctest runs this file with mpirun -np 2): a nonlinear footing
+// problem solved on a mesh distributed over both ranks gives the same displacements, stresses and
+// footing force as the same problem solved whole on each rank alone; the Lame cylinder keeps its
+// accuracy; the VTU output has one piece per rank.
+#include "fem/quasi_static_solver.h"
+#include "temporary_directory.h"
+
+#include <deal.II/base/function_lib.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+using namespace geohybrid::fem;
+using dealii::Point;
+using Mesh = dealii::parallel::distributed::Triangulation<dim>;
+
+namespace
+{
+constexpr dealii::types::boundary_id left = 0, right = 1, bottom = 2, footing = 4;
+
+/// u_y = -rate t on the footing.
+class FootingSettlement : public dealii::Function<dim>
+{
+public:
+  explicit FootingSettlement(double rate) : dealii::Function<dim>(dim), rate_(rate) {}
+  double value(const Point<dim> &, unsigned int c) const override { return c == 1 ? -rate_ * get_time() : 0.0; }
+
+private:
+  double rate_;
+};
+
+/// A 2 m x 1 m Mohr-Coulomb layer at its geostatic stress, between smooth walls on a rough base,
+/// with a rough rigid footing 0.5 m wide at the top-left corner pushed 5 mm down in 4 steps: a
+/// plastic zone grows under the footing (about a quarter of the points yield), and the
+/// non-associated flow needs GMRES.
+struct FootingProblem
+{
+  explicit FootingProblem(MPI_Comm comm) : mesh(comm)
+  {
+    dealii::GridGenerator::subdivided_hyper_rectangle(mesh, {8, 4}, Point<dim>(0, 0), Point<dim>(2, 1), true);
+    for (const auto &cell : mesh.cell_iterators_on_level(0))
+      for (const auto face : cell->face_indices())
+        if (cell->face(face)->at_boundary() && cell->face(face)->boundary_id() == 3 && cell->face(face)->center()[0] < 0.5)
+          cell->face(face)->set_boundary_id(footing);
+    mesh.refine_global(1);
+    SoilParameters soil;
+    soil.young_modulus = 20e6;
+    soil.poisson_ratio = 0.3;
+    soil.strength = {30.0, 5e3, 10.0};
+    BoundaryConditions bc;
+    bc.displacements = {{left, true, false, nullptr}, {right, true, false, nullptr}, {bottom, true, true, nullptr},
+                        {footing, true, true, std::make_shared<FootingSettlement>(0.005)}};
+    QuasiStaticSettings settings;
+    settings.element_degree = 2;
+    settings.density = 2000.0;
+    settings.newton.relative_tolerance = 1e-11;
+    settings.linear_solver.relative_tolerance = 1e-12;
+    settings.stepping.increment = 0.25;
+    solver = std::make_unique<QuasiStaticSolver>(mesh, SoilModel(soil), bc, settings);
+    GeostaticStress geostatic;
+    geostatic.surface_elevation = 1.0;
+    geostatic.unit_weight = 2000.0 * 9.81;
+    geostatic.k0 = 1 - std::sin(30.0 * pi / 180.0);
+    solver->set_initial_stress(geostatic);
+  }
+  Mesh mesh;
+  std::unique_ptr<QuasiStaticSolver> solver;
+};
+} // namespace
+
+TEST(Mpi, DistributedSolutionMatchesTheWholeProblemOnOneRank)
+{
+  ASSERT_EQ(dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD), 2u) << "run with mpirun -np 2";
+  auto start = std::chrono::steady_clock::now();
+  FootingProblem distributed(MPI_COMM_WORLD);
+  const auto report = distributed.solver->advance_to(1.0);
+  const double distributed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  start = std::chrono::steady_clock::now();
+  FootingProblem whole(MPI_COMM_SELF);
+  whole.solver->advance_to(1.0);
+  const double whole_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // Both ranks own part of the mesh.
+  EXPECT_GT(distributed.mesh.n_locally_owned_active_cells(), 0u);
+  EXPECT_LT(distributed.mesh.n_locally_owned_active_cells(), whole.mesh.n_active_cells());
+
+  const auto force_distributed = distributed.solver->boundary_reaction(footing);
+  const auto force_whole = whole.solver->boundary_reaction(footing);
+  EXPECT_NEAR(force_distributed[1], force_whole[1], 1e-8 * std::abs(force_whole[1]));
+  EXPECT_NEAR(force_distributed[0], force_whole[0], 1e-8 * std::abs(force_whole[1]));
+
+  // Cell by cell (the same CellId on both meshes): DoF values and quadrature-point stresses.
+  const auto &dofs_d = distributed.solver->space().dof_handler();
+  const auto &dofs_w = whole.solver->space().dof_handler();
+  const unsigned int n = dofs_d.get_fe().n_dofs_per_cell();
+  std::vector<dealii::types::global_dof_index> indices_d(n), indices_w(n);
+  double displacement_difference = 0.0, stress_difference = 0.0, largest_displacement = 0.0, largest_stress = 0.0;
+  unsigned int n_yielded = 0;
+  for (const auto &cell_d : dofs_d.active_cell_iterators())
+    if (cell_d->is_locally_owned())
+      {
+        const auto tria_cell_w = whole.mesh.create_cell_iterator(cell_d->id());
+        const dealii::DoFHandler<dim>::active_cell_iterator cell_w(&whole.mesh, tria_cell_w->level(), tria_cell_w->index(), &dofs_w);
+        cell_d->get_dof_indices(indices_d);
+        cell_w->get_dof_indices(indices_w);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const double ud = distributed.solver->displacement()[indices_d[i]];
+            const double uw = whole.solver->displacement()[indices_w[i]];
+            displacement_difference = std::max(displacement_difference, std::abs(ud - uw));
+            largest_displacement = std::max(largest_displacement, std::abs(uw));
+          }
+        const auto points_d = distributed.solver->material_points().at(cell_d);
+        const auto points_w = whole.solver->material_points().at(tria_cell_w);
+        for (unsigned int q = 0; q < points_d.size(); ++q)
+          {
+            stress_difference = std::max(stress_difference, (points_d[q]->stress - points_w[q]->stress).norm());
+            largest_stress = std::max(largest_stress, points_w[q]->stress.norm());
+            n_yielded += points_d[q]->region != ReturnRegion::elastic;
+          }
+      }
+  displacement_difference = dealii::Utilities::MPI::max(displacement_difference, MPI_COMM_WORLD);
+  largest_displacement = dealii::Utilities::MPI::max(largest_displacement, MPI_COMM_WORLD);
+  stress_difference = dealii::Utilities::MPI::max(stress_difference, MPI_COMM_WORLD);
+  largest_stress = dealii::Utilities::MPI::max(largest_stress, MPI_COMM_WORLD);
+  n_yielded = dealii::Utilities::MPI::sum(n_yielded, MPI_COMM_WORLD);
+  EXPECT_LT(displacement_difference, 1e-8 * largest_displacement);
+  EXPECT_LT(stress_difference, 1e-8 * largest_stress);
+  EXPECT_GT(n_yielded, 10u); // the comparison covers plastic states, not only elastic ones
+  EXPECT_NEAR(largest_displacement, 0.005, 1e-12); // the footing's settlement is the largest motion
+
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    {
+      std::cout << "footing: force " << force_distributed << " N/m (whole " << force_whole << "), max |du| "
+                << displacement_difference << " m, max |dsigma| " << stress_difference << " Pa, " << n_yielded
+                << " yielded points; 2 ranks " << distributed_seconds << " s, 1 rank " << whole_seconds << " s; Newton";
+      for (const auto &s : report.steps)
+        std::cout << " " << s.n_iterations << " (" << s.n_linear_iterations << " GMRES)";
+      std::cout << std::endl;
+    }
+}
+
+// The Lame cylinder on two ranks (Q2, 1666 DoFs) keeps the L2 error of the serial run, 2.67e-5.
+TEST(Mpi, LameCylinderOnTwoRanks)
+{
+  const double a = 1.0, b = 2.0, p = 100e3, E = 50e6, nu = 0.3, A = p * a * a / (b * b - a * a), B = A * b * b;
+  Mesh mesh(MPI_COMM_WORLD);
+  dealii::GridGenerator::quarter_hyper_shell(mesh, Point<dim>(), a, b, 0, true);
+  mesh.refine_global(3);
+  SoilParameters soil;
+  soil.kind = SoilModelKind::linear_elastic;
+  soil.young_modulus = E;
+  soil.poisson_ratio = nu;
+  BoundaryConditions bc;
+  bc.displacements = {{2, true, false, nullptr}, {3, false, true, nullptr}};
+  bc.pressures = {{0, std::make_shared<dealii::Functions::ConstantFunction<dim>>(p)}};
+  QuasiStaticSettings settings;
+  settings.newton.relative_tolerance = 1e-12;
+  settings.linear_solver.relative_tolerance = 1e-13;
+  settings.stepping.increment = 1.0;
+  QuasiStaticSolver solver(mesh, SoilModel(soil), bc, settings);
+  solver.advance_to(1.0);
+  const dealii::VectorFunctionFromScalarFunctionObject<dim> ux(
+    [&](const Point<dim> &x) { return (1 + nu) / E * (A * (1 - 2 * nu) + B / x.norm_square()) * x[0]; }, 0, dim);
+  const dealii::VectorFunctionFromScalarFunctionObject<dim> uy(
+    [&](const Point<dim> &x) { return (1 + nu) / E * (A * (1 - 2 * nu) + B / x.norm_square()) * x[1]; }, 1, dim);
+  dealii::Vector<float> cells(mesh.n_active_cells());
+  double error2 = 0.0, norm2 = 0.0;
+  dealii::PETScWrappers::MPI::Vector zero(solver.space().locally_owned_dofs(), solver.space().locally_relevant_dofs(),
+                                          MPI_COMM_WORLD);
+  for (const auto *exact : {&ux, &uy})
+    {
+      const dealii::ComponentSelectFunction<dim> select(exact == &ux ? 0 : 1, dim);
+      dealii::VectorTools::integrate_difference(solver.space().mapping(), solver.space().dof_handler(),
+                                                solver.displacement(), *exact, cells, dealii::QGauss<dim>(5),
+                                                dealii::VectorTools::L2_norm, &select);
+      error2 += std::pow(dealii::VectorTools::compute_global_error(mesh, cells, dealii::VectorTools::L2_norm), 2);
+      dealii::VectorTools::integrate_difference(solver.space().mapping(), solver.space().dof_handler(), zero, *exact,
+                                                cells, dealii::QGauss<dim>(5), dealii::VectorTools::L2_norm, &select);
+      norm2 += std::pow(dealii::VectorTools::compute_global_error(mesh, cells, dealii::VectorTools::L2_norm), 2);
+    }
+  const double relative_error = std::sqrt(error2 / norm2);
+  EXPECT_NEAR(relative_error, 2.66941e-05, 1e-9);
+}
+
+TEST(Mpi, VtuRecordListsOnePiecePerRank)
+{
+  // Rank 0 chooses the directory; the others use the same one.
+  std::unique_ptr<geohybrid::testing::TemporaryDirectory> directory;
+  std::string path;
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    {
+      directory = std::make_unique<geohybrid::testing::TemporaryDirectory>("fem_mpi_vtu");
+      path = directory->path.string();
+    }
+  path = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, path, 0);
+  FootingProblem problem(MPI_COMM_WORLD);
+  const std::string record = problem.solver->write_vtu(path, "footing", 0);
+  MPI_Barrier(MPI_COMM_WORLD); // each rank writes its own piece: wait for all before reading
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    {
+      std::ifstream pvtu(path + "/" + record);
+      std::stringstream text;
+      text << pvtu.rdbuf();
+      EXPECT_NE(text.str().find("footing_0000.0.vtu"), std::string::npos);
+      EXPECT_NE(text.str().find("footing_0000.1.vtu"), std::string::npos);
+      EXPECT_TRUE(std::ifstream(path + "/footing_0000.1.vtu").good());
+    }
+  MPI_Barrier(MPI_COMM_WORLD); // rank 0 removes the directory only after every rank wrote
+}

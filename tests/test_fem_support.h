@@ -1,0 +1,125 @@
+#pragma once
+// Shared set-up for the tests of the continuum solver: meshes, soils and load functions.
+#include "fem/quasi_static_solver.h"
+
+#include <deal.II/grid/grid_generator.h>
+
+#include <cmath>
+
+namespace geohybrid::fem::testing
+{
+using dealii::Point;
+using Mesh = dealii::parallel::distributed::Triangulation<dim>;
+
+// Boundary ids of a colorized rectangle.
+inline constexpr dealii::types::boundary_id left = 0, right = 1, bottom = 2, top = 3;
+
+inline SoilModel elastic_soil(double E = 50e6, double nu = 0.3)
+{
+  SoilParameters p;
+  p.kind = SoilModelKind::linear_elastic;
+  p.young_modulus = E;
+  p.poisson_ratio = nu;
+  return SoilModel(p);
+}
+
+inline SoilModel mohr_coulomb_soil(double phi, double c, double psi, double E = 20e6, double nu = 0.3)
+{
+  SoilParameters p;
+  p.kind = SoilModelKind::mohr_coulomb;
+  p.young_modulus = E;
+  p.poisson_ratio = nu;
+  p.strength = {phi, c, psi};
+  return SoilModel(p);
+}
+
+inline void make_rectangle(Mesh &mesh, unsigned int nx, unsigned int ny, const Point<dim> &p1, const Point<dim> &p2)
+{
+  dealii::GridGenerator::subdivided_hyper_rectangle(mesh, {nx, ny}, p1, p2, true);
+}
+
+/// A deterministic pseudo-random number in [-1, 1] from a vertex position: the same on every rank.
+inline double hash(const Point<dim> &p)
+{
+  const double s = std::sin(12.9898 * p[0] + 78.233 * p[1]) * 43758.5453;
+  return 2.0 * (s - std::floor(s)) - 1.0;
+}
+
+/// u(x, t) = t (u0 + G x): a linear displacement field, growing with the pseudo-time.
+class LinearDisplacement : public dealii::Function<dim>
+{
+public:
+  LinearDisplacement() : dealii::Function<dim>(dim) {}
+  double value(const Point<dim> &x, unsigned int c) const override
+  {
+    const double u0[2] = {1e-3, -2e-3};
+    const double G[2][2] = {{2e-3, -1e-3}, {3e-3, -4e-3}};
+    return get_time() * (u0[c] + G[c][0] * x[0] + G[c][1] * x[1]);
+  }
+};
+
+/// f(t) = a + b t, a constant in space (a pressure or a displacement component).
+class LinearInTime : public dealii::Function<dim>
+{
+public:
+  LinearInTime(double a, double b, unsigned int n_components = 1, unsigned int component = 0)
+    : dealii::Function<dim>(n_components), a_(a), b_(b), component_(component) {}
+  double value(const Point<dim> &, unsigned int c) const override
+  {
+    return c == component_ ? a_ + b_ * get_time() : 0.0;
+  }
+
+private:
+  double a_, b_;
+  unsigned int component_;
+};
+
+inline double max_abs_difference(const dealii::PETScWrappers::MPI::Vector &a, const dealii::PETScWrappers::MPI::Vector &b,
+                          const dealii::IndexSet &owned)
+{
+  double m = 0.0;
+  for (const auto i : owned)
+    m = std::max(m, std::abs(a[i] - b[i]));
+  return dealii::Utilities::MPI::max(m, MPI_COMM_WORLD);
+}
+
+inline QuasiStaticSettings exact_settings(unsigned int degree)
+{
+  QuasiStaticSettings s;
+  s.element_degree = degree;
+  s.newton.relative_tolerance = 1e-12;
+  s.linear_solver.relative_tolerance = 1e-13;
+  s.stepping.increment = 1.0;
+  return s;
+}
+/// A 2 m x 1 m layer of soil (density 2000 kg/m^3) on a fixed base between smooth walls.
+struct Layer
+{
+  double width = 2.0, height = 1.0, density = 2000.0, g = 9.81, E = 20e6, nu = 0.3, phi = 30.0;
+  double unit_weight() const { return density * g; }
+  BoundaryConditions supports() const
+  {
+    BoundaryConditions bc;
+    bc.displacements = {{left, true, false, nullptr}, {right, true, false, nullptr}, {bottom, true, true, nullptr}};
+    return bc;
+  }
+  GeostaticStress geostatic() const
+  {
+    GeostaticStress g0;
+    g0.surface_elevation = height;
+    g0.unit_weight = unit_weight();
+    g0.k0 = 1 - std::sin(phi * pi / 180.0);
+    return g0;
+  }
+  QuasiStaticSettings settings(unsigned int degree) const
+  {
+    QuasiStaticSettings s;
+    s.element_degree = degree;
+    s.density = density;
+    s.newton.relative_tolerance = 1e-12;
+    s.linear_solver.relative_tolerance = 1e-13;
+    s.stepping.increment = 0.5;
+    return s;
+  }
+};
+} // namespace geohybrid::fem::testing
