@@ -46,6 +46,21 @@ std::array<double, 3> love_weber_stress(const DemSystem &system, const Region &r
           add(wc.force_x[q], wc.force_y[q], closest.x() - p.x[b], closest.y() - p.y[b]);
         }
     }
+  // Sheets act on the bodies as walls do, at the contact's point on the sheet's centre line.
+  for (std::size_t s = 0; s < system.sheets().size(); ++s)
+    {
+      const SheetContacts &sc = system.sheet_contacts()[s];
+      for (std::size_t q = 0; q < sc.size(); ++q)
+        {
+          if (!sc.state[q].touching)
+            continue;
+          const std::uint32_t b = p.disc_body[sc.disc[q]];
+          if (!region.contains(p.x[b], p.y[b]))
+            continue;
+          const Vec2 point = point_on_segment(system.sheets()[s], sc.segment[q], sc.position[q]);
+          add(sc.force_x[q], sc.force_y[q], point.x() - p.x[b], point.y() - p.y[b]);
+        }
+    }
   // The force on a body at lever r pushes inward in compression: sum f (x) r is negative there,
   // which is the continuum sign (compression negative).
   const double A = region.area();
@@ -67,8 +82,9 @@ double coordination_number(const DemSystem &system)
   const std::size_t nb = system.particles().n_bodies();
   if (nb == 0)
     return 0.0;
-  return (2.0 * static_cast<double>(system.n_touching_pairs()) +
-          static_cast<double>(system.n_touching_wall_contacts())) / static_cast<double>(nb);
+  return (2.0 * static_cast<double>(system.n_touching_pairs()) + static_cast<double>(system.n_touching_wall_contacts()) +
+          static_cast<double>(system.n_touching_sheet_contacts())) /
+         static_cast<double>(nb);
 }
 
 double unbalanced_force_ratio(const DemSystem &system)
@@ -94,6 +110,13 @@ double unbalanced_force_ratio(const DemSystem &system)
       if (wc.state[q].touching)
         {
           contact += std::hypot(wc.force_x[q], wc.force_y[q]);
+          ++n_contacts;
+        }
+  for (const SheetContacts &sc : system.sheet_contacts())
+    for (std::size_t q = 0; q < sc.size(); ++q)
+      if (sc.state[q].touching)
+        {
+          contact += std::hypot(sc.force_x[q], sc.force_y[q]);
           ++n_contacts;
         }
   if (n_bodies == 0 || n_contacts == 0 || contact == 0.0)

@@ -17,7 +17,7 @@ struct Region
 
 /// Love-Weber average stress over the bodies whose centre of mass lies in the region:
 ///   sigma_ab = -(1/A) sum_bodies sum_contacts f_a (x_c - x_body)_b,
-/// written per body so that clusters and walls need no special branch vector. Compression is
+/// written per body so that clusters, walls and sheets need no special branch vector. Compression is
 /// negative (continuum mechanics sign), components {xx, yy, xy} [Pa]. The xy entry is the
 /// symmetric part; equilibrium makes the skew part vanish.
 std::array<double, 3> love_weber_stress(const DemSystem &system, const Region &region);
@@ -26,7 +26,7 @@ std::array<double, 3> love_weber_stress(const DemSystem &system, const Region &r
 /// the region's edge are counted whole, so use regions much larger than a particle.
 double porosity(const DemSystem &system, const Region &region);
 
-/// Mean number of touching contacts per body, 2 N_c / N_b (wall contacts count once each).
+/// Mean number of touching contacts per body, 2 N_c / N_b (wall and sheet contacts count once each).
 double coordination_number(const DemSystem &system);
 
 /// PFC's unbalanced-force ratio: mean |resultant force| over movable bodies divided by the mean
