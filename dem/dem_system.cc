@@ -79,16 +79,30 @@ std::size_t DemSystem::add_sheet(const SparSheet &sheet)
 {
   sheets_.push_back(sheet);
   sheet_contacts_.emplace_back();
+  if (time_step_ > critical_time_step())
+    {
+      if (settings_.time_step > 0.0)
+        {
+          // A step the user chose that the sheet cannot follow: refuse the sheet, keep the system.
+          std::string message;
+          try
+            {
+              set_time_step(time_step_);
+            }
+          catch (const std::invalid_argument &e)
+            {
+              message = e.what();
+            }
+          sheets_.pop_back();
+          sheet_contacts_.pop_back();
+          throw std::invalid_argument("sheet '" + sheet.name() + "': " + message);
+        }
+      set_time_step(settings_.time_step_safety * critical_time_step());
+    }
   SparSheet &added = sheets_.back();
   added.start_forces(settings_.gravity); // the first half kick sees the weight
   skin_ = std::max(skin_, 1.05 * added.interface_law().max_bonded_gap());
   rebuild_needed_ = true;
-  if (time_step_ > critical_time_step())
-    {
-      if (settings_.time_step > 0.0)
-        set_time_step(time_step_); // throws, naming the limit
-      set_time_step(settings_.time_step_safety * critical_time_step());
-    }
   return sheets_.size() - 1;
 }
 

@@ -890,8 +890,16 @@ TEST(SheetBadInput, RefusedNamingTheParameter)
   DemSettings settings;
   settings.time_step = 1.0e-3;
   ParticleSet p;
-  p.add_disc(Vec2(1.0, 1.0), 0.01, 2650.0);
-  DemSystem system(std::move(p), LinearContactLaw(contact_law(1.0e5, 20.0)), settings);
+  p.add_disc(Vec2(1.0, 1.0), 0.05, 2650.0); // stable up to 4.6e-3 s
+  DemSystem system(std::move(p), LinearContactLaw(contact_law(1.0e6, 20.0)), settings);
   m = invalid_argument_of([&] { system.add_sheet(SparSheet("geotextile", nodes, good)); });
   EXPECT_NE(m.find("mass scaling"), std::string::npos) << m;
+  EXPECT_NE(m.find("geotextile"), std::string::npos) << m;
+  EXPECT_TRUE(system.sheets().empty()); // refused, and the system still runs
+  system.run_steps(10);
+  // With mass scaling the same sheet fits the step.
+  SparSheet scaled("geotextile", nodes, good);
+  scaled.set_mass_scaling(scaled.required_mass_scaling(1.0e-3 / 0.5, system.sheet_contact_stiffness() + 1.0e6));
+  EXPECT_EQ(system.add_sheet(scaled), 0u);
+  EXPECT_GE(system.critical_time_step(), 1.0e-3);
 }
