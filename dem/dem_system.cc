@@ -103,6 +103,11 @@ std::size_t DemSystem::add_sheet(const SparSheet &sheet)
   added.start_forces(settings_.gravity); // the first half kick sees the weight
   skin_ = std::max(skin_, 1.05 * added.interface_law().max_bonded_gap());
   rebuild_needed_ = true;
+  // A sheet laid during a run brings its energy with it: booked as work supplied, so that the
+  // energy balance stays continuous.
+  if (forces_initialised_ && settings_.track_energy)
+    accumulated_.boundary_work += added.kinetic_energy() + added.elastic_energy() +
+                                  added.gravitational_energy(settings_.gravity);
   return sheets_.size() - 1;
 }
 

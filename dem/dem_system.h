@@ -95,6 +95,7 @@ public:
   std::size_t add_wall(const Wall &wall);
 
   /// Adds a geosynthetic sheet; returns its index. Its nodes start with their weight as force.
+  /// Added during a run (e.g. laid while a tank is filled), its energy counts as boundary work.
   /// The sheet's interface stiffness and node dynamics enter the critical time step: an automatic
   /// step is lowered if needed, a step the user chose is re-checked (throws
   /// std::invalid_argument if it is now unstable: raise the sheet's mass scaling, see
