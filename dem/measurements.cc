@@ -1,5 +1,8 @@
 #include "measurements.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace geohybrid::dem
 {
 std::array<double, 3> love_weber_stress(const DemSystem &system, const Region &region)
@@ -65,6 +68,36 @@ std::array<double, 3> love_weber_stress(const DemSystem &system, const Region &r
   // which is the continuum sign (compression negative).
   const double A = region.area();
   return {s_xx / A, s_yy / A, 0.5 * (s_xy + s_yx) / A};
+}
+
+SheetFaceStresses sheet_face_stresses(const DemSystem &system, std::size_t s, std::size_t first, std::size_t last)
+{
+  if (s >= system.sheets().size())
+    throw std::out_of_range("sheet_face_stresses: there is no sheet " + std::to_string(s));
+  const SparSheet &sheet = system.sheets()[s];
+  const SheetContacts &c = system.sheet_contacts()[s];
+  const ParticleSet &p = system.particles();
+  last = std::min(last, sheet.n_segments());
+  SheetFaceStresses out;
+  double length = 0.0;
+  for (std::size_t k = first; k < last; ++k)
+    length += sheet.segment_length(k);
+  if (!(length > 0.0))
+    return out;
+  for (std::size_t q = 0; q < c.size(); ++q)
+    {
+      const std::size_t k = c.segment[q];
+      if (!c.state[q].touching || k < first || k >= last)
+        continue;
+      const Vec2 a = sheet.node(k), u = (sheet.node(k + 1) - a).normalized();
+      const Vec2 on_sheet(-c.force_x[q], -c.force_y[q]);
+      const bool left = cross(u, Vec2(p.disc_x[c.disc[q]], p.disc_y[c.disc[q]]) - a) > 0.0;
+      // The normal force pushes the sheet away from the disc: toward -perp(u) from the left.
+      const double normal = left ? -on_sheet.dot(perp(u)) : on_sheet.dot(perp(u));
+      (left ? out.normal_left : out.normal_right) += normal / length;
+      (left ? out.shear_left : out.shear_right) += on_sheet.dot(u) / length;
+    }
+  return out;
 }
 
 double porosity(const DemSystem &system, const Region &region)

@@ -29,6 +29,20 @@ double porosity(const DemSystem &system, const Region &region);
 /// Mean number of touching contacts per body, 2 N_c / N_b (wall and sheet contacts count once each).
 double coordination_number(const DemSystem &system);
 
+/// What the discs apply to the two faces of a sheet, averaged over segments [first, last)
+/// (default: the whole sheet): the normal stress sum(Fn) / L and the shear stress
+/// sum(F . u) / L on each face, with L the current length of those segments, u the unit vector of
+/// each contact's segment (from node k to k + 1) and F the force on the sheet; the left face is the
+/// one perp(u) points to (the top of a sheet running along +x) [Pa]. A normal stress against the
+/// overburden gamma H, or the shear stresses against the head tension, checks a pull-out run.
+struct SheetFaceStresses
+{
+  double normal_left = 0.0, normal_right = 0.0;
+  double shear_left = 0.0, shear_right = 0.0;
+};
+SheetFaceStresses sheet_face_stresses(const DemSystem &system, std::size_t sheet, std::size_t first_segment = 0,
+                                      std::size_t last_segment = static_cast<std::size_t>(-1));
+
 /// PFC's unbalanced-force ratio: mean |resultant force| over movable bodies divided by the mean
 /// contact force magnitude; tends to 0 at static equilibrium.
 double unbalanced_force_ratio(const DemSystem &system);

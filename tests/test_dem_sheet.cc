@@ -308,6 +308,17 @@ TEST(SheetInterface, PullOutBetweenPlatesGivesTwoSigmaTanDeltaL)
         EXPECT_NEAR(c.elastic_normal_force[q], PinchedSheet::weight, 0.01 * PinchedSheet::weight);
       }
   EXPECT_EQ(n_touching, 2u * PinchedSheet::n);
+  // The same as stresses on each face: sigma_v and tan(delta) sigma_v over the pinched length,
+  // diluted over the whole sheet's length; the friction on the sheet points away from the clamp.
+  const SheetFaceStresses faces = sheet_face_stresses(system, 0);
+  double length = 0.0;
+  for (std::size_t k = 0; k < system.sheets()[0].n_segments(); ++k)
+    length += system.sheets()[0].segment_length(k);
+  const double sigma = PinchedSheet::n * PinchedSheet::weight / length;
+  EXPECT_NEAR(faces.normal_left, sigma, 0.01 * sigma);
+  EXPECT_NEAR(faces.normal_right, sigma, 0.01 * sigma);
+  EXPECT_NEAR(faces.shear_left, mu * sigma, 0.01 * mu * sigma);
+  EXPECT_NEAR(faces.shear_right, mu * sigma, 0.01 * mu * sigma);
   // The pinches have crossed nodes: the sheet moved more than a segment.
   EXPECT_LT(system.sheets()[0].x[5] - 5.0 * system.sheets()[0].rest_length[0] + 0.02, -PinchedSheet::pitch / 2.0);
 }
