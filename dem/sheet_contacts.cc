@@ -60,12 +60,16 @@ void SheetContactSearch::rebuild(const ParticleSet &p, const NeighbourSearch &se
     }
   std::sort(keys_.begin(), keys_.end());
 
+  // The history is the contact state and the last elastic normal force (the energy a contact
+  // switched off by the node rule releases).
   std::swap(previous_.disc, c.disc);
   std::swap(previous_.segment, c.segment);
   std::swap(previous_.state, c.state);
+  std::swap(previous_.elastic_normal_force, c.elastic_normal_force);
   c.disc.resize(keys_.size());
   c.segment.resize(keys_.size());
   c.state.assign(keys_.size(), ContactState{});
+  c.resize_results();
   std::size_t old = 0;
   for (std::size_t q = 0; q < keys_.size(); ++q)
     {
@@ -78,9 +82,11 @@ void SheetContactSearch::rebuild(const ParticleSet &p, const NeighbourSearch &se
       while (old < previous_.disc.size() && old_key(old) < keys_[q])
         ++old;
       if (old < previous_.disc.size() && old_key(old) == keys_[q])
-        c.state[q] = previous_.state[old];
+        {
+          c.state[q] = previous_.state[old];
+          c.elastic_normal_force[q] = previous_.elastic_normal_force[old];
+        }
     }
-  c.resize_results();
 
   // Node-wall candidates, per wall, sorted by node.
   c.walls.resize(walls.size());
