@@ -86,7 +86,7 @@ public:
   void release(std::size_t k);
   bool is_kinematic(std::size_t k) const { return inverse_mass[k] == 0.0; }
   /// Force the clamp applies to kinematic node k to hold its motion, at the last force
-  /// evaluation: minus the sum of tension, contact, wall and gravity forces on it [N/m]. Zero for a
+  /// evaluation: minus the sum of tension, contact, wall, gravity and load forces on it [N/m]. Zero for a
   /// free node. For the first node of a pulled sheet, its component along the pull is the head
   /// tension.
   Vec2 reaction(std::size_t k) const { return Vec2(reaction_x[k], reaction_y[k]); }
