@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -36,8 +37,16 @@ static_assert(sizeof(ParticleSet) == 22 * sizeof(std::vector<double>), "Particle
 static_assert(sizeof(PairContacts) == 16 * sizeof(std::vector<double>) + sizeof(std::size_t),
               "PairContacts changed: update the checkpoint (the adjacency and chunk plan are derived, not stored)");
 static_assert(sizeof(WallContacts) == 7 * sizeof(std::vector<double>), "WallContacts changed: update the checkpoint");
-static_assert(sizeof(EnergyBudget) == 7 * sizeof(double), "EnergyBudget changed: update the checkpoint");
-static_assert(sizeof(DemSystemState) == 1312, "DemSystemState changed: update the checkpoint");
+static_assert(sizeof(EnergyBudget) == 10 * sizeof(double), "EnergyBudget changed: update the checkpoint");
+static_assert(sizeof(SheetParameters) == 4 * sizeof(double) + sizeof(ContactParameters),
+              "SheetParameters changed: update the checkpoint");
+static_assert(sizeof(SparSheet) == 17 * sizeof(std::vector<double>) + sizeof(std::string) + sizeof(SheetParameters) +
+                                     sizeof(LinearContactLaw),
+              "SparSheet changed: update the checkpoint");
+static_assert(sizeof(SheetContacts) == 14 * sizeof(std::vector<double>), "SheetContacts changed: update the checkpoint");
+static_assert(sizeof(SheetWallContacts) == 7 * sizeof(std::vector<double>),
+              "SheetWallContacts changed: update the checkpoint");
+static_assert(sizeof(DemSystemState) == 1384, "DemSystemState changed: update the checkpoint");
 #endif
 
 std::string describe(const std::filesystem::path &file) { return "DEM checkpoint '" + file.string() + "'"; }
@@ -177,6 +186,66 @@ void put_wall(hid_t group, const Wall &wall, const std::string &where)
   put_law(group, "law", wall.law.parameters(), where);
 }
 
+void put_sheet(hid_t group, const SparSheet &sheet, const SheetContacts &c, const std::string &where)
+{
+  hdf5::write_string_attribute(group, "name", sheet.name(), where);
+  const SheetParameters &parameters = sheet.parameters();
+  put_attr(group, "axial_stiffness", parameters.axial_stiffness, where);
+  put_attr(group, "thickness", parameters.thickness, where);
+  put_attr(group, "areal_mass", parameters.areal_mass, where);
+  put_attr(group, "mass_scaling", parameters.mass_scaling, where);
+  put_law(group, "interface", parameters.interface, where);
+  put(group, "x", sheet.x, where);
+  put(group, "y", sheet.y, where);
+  put(group, "vx", sheet.vx, where);
+  put(group, "vy", sheet.vy, where);
+  put(group, "fx", sheet.fx, where);
+  put(group, "fy", sheet.fy, where);
+  put(group, "mass", sheet.mass, where);
+  put(group, "inverse_mass", sheet.inverse_mass, where);
+  put(group, "gravitational_mass", sheet.gravitational_mass, where);
+  put(group, "damping_fx", sheet.damping_fx, where);
+  put(group, "damping_fy", sheet.damping_fy, where);
+  put(group, "reaction_x", sheet.reaction_x, where);
+  put(group, "reaction_y", sheet.reaction_y, where);
+  put(group, "load_x", sheet.load_x, where);
+  put(group, "load_y", sheet.load_y, where);
+  put(group, "rest_length", sheet.rest_length, where);
+  put(group, "tension", sheet.tension, where);
+  {
+    Handle g = hdf5::create_group(group, "contacts", where);
+    put(g.get(), "disc", c.disc, where);
+    put(g.get(), "segment", c.segment, where);
+    put_states(g.get(), c.state, where);
+    put(g.get(), "position", c.position, where);
+    put(g.get(), "overlap", c.overlap, where);
+    put(g.get(), "counted", c.counted, where);
+    put(g.get(), "force_x", c.force_x, where);
+    put(g.get(), "force_y", c.force_y, where);
+    put(g.get(), "elastic_normal_force", c.elastic_normal_force, where);
+    put(g.get(), "friction_work", c.friction_work, where);
+    put(g.get(), "viscous_work", c.viscous_work, where);
+    put(g.get(), "node_x_at_rebuild", c.node_x_at_rebuild, where);
+    put(g.get(), "node_y_at_rebuild", c.node_y_at_rebuild, where);
+  }
+  {
+    Handle g = hdf5::create_group(group, "wall_contacts", where);
+    put_attr<std::uint64_t>(g.get(), "count", c.walls.size(), where);
+    for (std::size_t w = 0; w < c.walls.size(); ++w)
+      {
+        const SheetWallContacts &wc = c.walls[w];
+        Handle one = hdf5::create_group(g.get(), numbered("wall", w), where);
+        put(one.get(), "node", wc.node, where);
+        put_states(one.get(), wc.state, where);
+        put(one.get(), "force_x", wc.force_x, where);
+        put(one.get(), "force_y", wc.force_y, where);
+        put(one.get(), "elastic_normal_force", wc.elastic_normal_force, where);
+        put(one.get(), "friction_work", wc.friction_work, where);
+        put(one.get(), "viscous_work", wc.viscous_work, where);
+      }
+  }
+}
+
 void put_everything(hid_t file, const DemSystemState &s, const std::string &where)
 {
   hdf5::write_string_attribute(file, "format", format_name, where);
@@ -200,6 +269,9 @@ void put_everything(hid_t file, const DemSystemState &s, const std::string &wher
     put_attr(g.get(), "viscous_dissipated", e.viscous_dissipated, where);
     put_attr(g.get(), "local_damping_dissipated", e.local_damping_dissipated, where);
     put_attr(g.get(), "boundary_work", e.boundary_work, where);
+    put_attr(g.get(), "sheet_kinetic", e.sheet_kinetic, where);
+    put_attr(g.get(), "sheet_elastic", e.sheet_elastic, where);
+    put_attr(g.get(), "interface_friction_dissipated", e.interface_friction_dissipated, where);
   }
   {
     Handle g = hdf5::create_group(file, "particles", where);
@@ -278,6 +350,15 @@ void put_everything(hid_t file, const DemSystemState &s, const std::string &wher
     put(g.get(), "fx", s.damping_fx, where);
     put(g.get(), "fy", s.damping_fy, where);
     put(g.get(), "torque", s.damping_torque, where);
+  }
+  {
+    Handle g = hdf5::create_group(file, "sheets", where);
+    put_attr<std::uint64_t>(g.get(), "count", s.sheets.size(), where);
+    for (std::size_t k = 0; k < s.sheets.size(); ++k)
+      {
+        Handle one = hdf5::create_group(g.get(), numbered("sheet", k), where);
+        put_sheet(one.get(), s.sheets[k], s.sheet_contacts[k], where);
+      }
   }
 }
 
@@ -479,9 +560,123 @@ void check_consistency(const DemSystemState &s, const std::string &where)
       for (std::uint32_t d : w.disc)
         require(d < nd, "a wall contact's disc is out of range");
     }
+
+  require(s.sheet_contacts.size() == s.sheets.size(), "sheets and sheet contact lists of different counts");
+  for (std::size_t k = 0; k < s.sheets.size(); ++k)
+    {
+      const SparSheet &sheet = s.sheets[k];
+      const SheetContacts &sc = s.sheet_contacts[k];
+      const std::size_t n_nodes = sheet.x.size(), n_segments = sheet.rest_length.size();
+      require(n_nodes >= 2 && n_segments + 1 == n_nodes, "a sheet's node and segment counts do not match");
+      for (std::size_t size : {sheet.y.size(), sheet.vx.size(), sheet.vy.size(), sheet.fx.size(), sheet.fy.size(),
+                               sheet.mass.size(), sheet.inverse_mass.size(), sheet.gravitational_mass.size(),
+                               sheet.damping_fx.size(), sheet.damping_fy.size(), sheet.reaction_x.size(),
+                               sheet.reaction_y.size(), sheet.load_x.size(), sheet.load_y.size()})
+        require(size == n_nodes, "sheet node arrays of different lengths");
+      require(sheet.tension.size() == n_segments, "sheet segment arrays of different lengths");
+      for (double l0 : sheet.rest_length)
+        require(l0 > 0.0, "a sheet segment's rest length is not positive");
+      const std::size_t m = sc.disc.size();
+      for (std::size_t size : {sc.segment.size(), sc.state.size(), sc.position.size(), sc.overlap.size(),
+                               sc.counted.size(), sc.force_x.size(), sc.force_y.size(),
+                               sc.elastic_normal_force.size(), sc.friction_work.size(), sc.viscous_work.size()})
+        require(size == m, "sheet contact arrays of different lengths");
+      for (std::size_t q = 0; q < m; ++q)
+        require(sc.disc[q] < nd && sc.segment[q] < n_segments, "a sheet contact's disc or segment is out of range");
+      if (!s.rebuild_needed)
+        require(sc.node_x_at_rebuild.size() == n_nodes && sc.node_y_at_rebuild.size() == n_nodes &&
+                  sc.walls.size() == s.walls.size(),
+                "sheet reference positions or wall lists of the wrong length");
+      for (const SheetWallContacts &w : sc.walls)
+        {
+          for (std::size_t size : {w.state.size(), w.force_x.size(), w.force_y.size(), w.elastic_normal_force.size(),
+                                   w.friction_work.size(), w.viscous_work.size()})
+            require(size == w.node.size(), "sheet-wall contact arrays of different lengths");
+          for (std::uint32_t node : w.node)
+            require(node < n_nodes, "a sheet-wall contact's node is out of range");
+        }
+    }
 }
 
-DemSystemState get_everything(hid_t file, const std::string &where)
+SparSheet get_sheet(hid_t group, SheetContacts &c, const std::string &where)
+{
+  const std::string name = hdf5::read_string_attribute(group, "name", where);
+  SheetParameters parameters;
+  parameters.axial_stiffness = get_attr<double>(group, "axial_stiffness", where);
+  parameters.thickness = get_attr<double>(group, "thickness", where);
+  parameters.areal_mass = get_attr<double>(group, "areal_mass", where);
+  parameters.mass_scaling = get_attr<double>(group, "mass_scaling", where);
+  parameters.interface = get_law(group, "interface", where);
+  const SoaVector<double> rest_length = get<double>(group, "rest_length", where);
+  // A chain of the right size, built to validate the parameters; every array is then replaced
+  // by the stored one.
+  std::vector<Vec2> nodes(rest_length.size() + 1);
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    nodes[k] = Vec2(static_cast<double>(k), 0.0);
+  std::optional<SparSheet> sheet;
+  try
+    {
+      sheet.emplace(name, nodes, parameters);
+    }
+  catch (const std::invalid_argument &e)
+    {
+      fail(where, e.what());
+    }
+  SparSheet &out = *sheet;
+  out.rest_length = rest_length;
+  out.x = get<double>(group, "x", where);
+  out.y = get<double>(group, "y", where);
+  out.vx = get<double>(group, "vx", where);
+  out.vy = get<double>(group, "vy", where);
+  out.fx = get<double>(group, "fx", where);
+  out.fy = get<double>(group, "fy", where);
+  out.mass = get<double>(group, "mass", where);
+  out.inverse_mass = get<double>(group, "inverse_mass", where);
+  out.gravitational_mass = get<double>(group, "gravitational_mass", where);
+  out.damping_fx = get<double>(group, "damping_fx", where);
+  out.damping_fy = get<double>(group, "damping_fy", where);
+  out.reaction_x = get<double>(group, "reaction_x", where);
+  out.reaction_y = get<double>(group, "reaction_y", where);
+  out.load_x = get<double>(group, "load_x", where);
+  out.load_y = get<double>(group, "load_y", where);
+  out.tension = get<double>(group, "tension", where);
+  {
+    Handle g = hdf5::open_group(group, "contacts", where);
+    c.disc = get<std::uint32_t>(g.get(), "disc", where);
+    c.segment = get<std::uint32_t>(g.get(), "segment", where);
+    c.state = get_states(g.get(), where);
+    c.position = get<double>(g.get(), "position", where);
+    c.overlap = get<double>(g.get(), "overlap", where);
+    c.counted = get<std::uint8_t>(g.get(), "counted", where);
+    c.force_x = get<double>(g.get(), "force_x", where);
+    c.force_y = get<double>(g.get(), "force_y", where);
+    c.elastic_normal_force = get<double>(g.get(), "elastic_normal_force", where);
+    c.friction_work = get<double>(g.get(), "friction_work", where);
+    c.viscous_work = get<double>(g.get(), "viscous_work", where);
+    c.node_x_at_rebuild = get<double>(g.get(), "node_x_at_rebuild", where);
+    c.node_y_at_rebuild = get<double>(g.get(), "node_y_at_rebuild", where);
+  }
+  {
+    Handle g = hdf5::open_group(group, "wall_contacts", where);
+    const std::size_t count = get_count(g.get(), where);
+    c.walls.resize(count);
+    for (std::size_t w = 0; w < count; ++w)
+      {
+        SheetWallContacts &wc = c.walls[w];
+        Handle one = hdf5::open_group(g.get(), numbered("wall", w), where);
+        wc.node = get<std::uint32_t>(one.get(), "node", where);
+        wc.state = get_states(one.get(), where);
+        wc.force_x = get<double>(one.get(), "force_x", where);
+        wc.force_y = get<double>(one.get(), "force_y", where);
+        wc.elastic_normal_force = get<double>(one.get(), "elastic_normal_force", where);
+        wc.friction_work = get<double>(one.get(), "friction_work", where);
+        wc.viscous_work = get<double>(one.get(), "viscous_work", where);
+      }
+  }
+  return out;
+}
+
+DemSystemState get_everything(hid_t file, std::uint32_t version, const std::string &where)
 {
   DemSystemState s;
   s.time = get_attr<double>(file, "time", where);
@@ -503,6 +698,12 @@ DemSystemState get_everything(hid_t file, const std::string &where)
     e.viscous_dissipated = get_attr<double>(g.get(), "viscous_dissipated", where);
     e.local_damping_dissipated = get_attr<double>(g.get(), "local_damping_dissipated", where);
     e.boundary_work = get_attr<double>(g.get(), "boundary_work", where);
+    if (version >= 2)
+      {
+        e.sheet_kinetic = get_attr<double>(g.get(), "sheet_kinetic", where);
+        e.sheet_elastic = get_attr<double>(g.get(), "sheet_elastic", where);
+        e.interface_friction_dissipated = get_attr<double>(g.get(), "interface_friction_dissipated", where);
+      }
   }
   {
     Handle g = hdf5::open_group(file, "particles", where);
@@ -583,6 +784,17 @@ DemSystemState get_everything(hid_t file, const std::string &where)
     s.damping_fy = get<double>(g.get(), "fy", where);
     s.damping_torque = get<double>(g.get(), "torque", where);
   }
+  if (version >= 2) // version 1 had no sheets
+    {
+      Handle g = hdf5::open_group(file, "sheets", where);
+      const std::size_t count = get_count(g.get(), where);
+      s.sheet_contacts.resize(count);
+      for (std::size_t k = 0; k < count; ++k)
+        {
+          Handle one = hdf5::open_group(g.get(), numbered("sheet", k), where);
+          s.sheets.push_back(get_sheet(one.get(), s.sheet_contacts[k], where));
+        }
+    }
   check_consistency(s, where);
   return s;
 }
@@ -640,10 +852,10 @@ DemSystemState read_checkpoint(const std::filesystem::path &file)
       hdf5::read_string_attribute(h5.get(), "format", where) != format_name)
     fail(where, "is not a geohybrid DEM checkpoint");
   const std::uint32_t version = get_attr<std::uint32_t>(h5.get(), "format_version", where);
-  if (version != checkpoint_format_version)
-    fail(where, "has checkpoint format version " + std::to_string(version) + "; this program reads version " +
+  if (version < 1 || version > checkpoint_format_version)
+    fail(where, "has checkpoint format version " + std::to_string(version) + "; this program reads versions 1 to " +
                   std::to_string(checkpoint_format_version));
-  DemSystemState state = get_everything(h5.get(), where);
+  DemSystemState state = get_everything(h5.get(), version, where);
   h5.close(where, "closing the file");
   return state;
 }

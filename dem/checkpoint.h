@@ -5,13 +5,15 @@
 // then calls DemSystem::restore_state(read_checkpoint(file)). Walls are stored whole (geometry,
 // contact law, control), so the saved walls replace those the system was built with.
 //
-// HDF5 layout, format version 1 (doubles as IEEE 754 binary64, so values round-trip exactly;
-// booleans as uint8; "n x 2" datasets hold (x, y) rows):
+// HDF5 layout, format version 2 (doubles as IEEE 754 binary64, so values round-trip exactly;
+// booleans as uint8; "n x 2" datasets hold (x, y) rows). Version 1 files (no sheets, no sheet
+// energy terms) are still read, as a state without sheets:
 //
 //   /                 attributes: format = "geohybrid DEM checkpoint", format_version (uint32),
 //                     time, time_step, skin (double), step_count, n_rebuilds, n_broken_bonds
 //                     (uint64), rebuild_needed (uint8)
-//   /energy           attributes: the EnergyBudget terms (double), by their C++ names
+//   /energy           attributes: the EnergyBudget terms (double), by their C++ names (version 1:
+//                     without sheet_kinetic, sheet_elastic, interface_friction_dissipated)
 //   /particles/*      every ParticleSet array under its C++ name (body_id int64; first_disc,
 //                     n_discs, disc_body uint32; the others double)
 //   /pairs/*          disc_i, disc_j (uint32); the ContactState fields tangential_force,
@@ -27,6 +29,16 @@
 //   /verlet           disc_x_at_rebuild, disc_y_at_rebuild, wall_start_at_rebuild (n x 2)
 //   /wall_force_previous   n x 2
 //   /damping          fx, fy, torque
+//   /sheets           (version 2) attribute count; /sheets/sheet_NNNNNN per sheet: attributes name,
+//                     axial_stiffness, thickness, areal_mass, mass_scaling; group interface (the
+//                     interface ContactParameters, as a wall's law); datasets x, y, vx, vy, fx, fy,
+//                     mass, inverse_mass, gravitational_mass, damping_fx, damping_fy, reaction_x,
+//                     reaction_y, load_x, load_y (per node), rest_length, tension (per segment);
+//                     contacts/: disc, segment (uint32), the ContactState fields, position,
+//                     overlap, counted (uint8), force_x, force_y, elastic_normal_force,
+//                     friction_work, viscous_work, node_x_at_rebuild, node_y_at_rebuild;
+//                     wall_contacts/ attribute count, wall_NNNNNN: node (uint32), the ContactState
+//                     fields, force_x, force_y, elastic_normal_force, friction_work, viscous_work
 #include "dem_system.h"
 
 #include <cstdint>
@@ -34,8 +46,8 @@
 
 namespace geohybrid::dem
 {
-/// Version of the layout above; read_checkpoint() refuses any other.
-constexpr std::uint32_t checkpoint_format_version = 1;
+/// Version of the layout above; read_checkpoint() reads it and the earlier ones, refuses others.
+constexpr std::uint32_t checkpoint_format_version = 2;
 
 /// Writes `state` to `file` through FILE.tmp in the same directory: the temporary file is
 /// written, flushed to the disk (fsync) and renamed over `file`, so a crash at any moment leaves

@@ -4,7 +4,7 @@
 // Coulomb slider (Cundall & Strack 1979) whose limit carries the contact shear strength a_s while
 // the contact is bonded, a tensile strength a_n, and an optional normal dashpot set from a
 // restitution coefficient. One law serves disc-disc and disc-wall contacts (a wall is a body of
-// infinite mass) and, later, disc-sheet contacts. Sign conventions: see conventions.h.
+// infinite mass) and disc-sheet contacts (sheet_contacts.h). Sign conventions: see conventions.h.
 #include "conventions.h"
 
 #include <string>

@@ -23,6 +23,7 @@ void NeighbourSearch::rebuild_pairs(const ParticleSet &p, double skin, int n_thr
   pairs.disc_i.clear();
   pairs.disc_j.clear();
   pairs.state.clear();
+  grid_ncx_ = grid_ncy_ = 0;
 
   if (nd > 0)
     {
@@ -43,6 +44,11 @@ void NeighbourSearch::rebuild_pairs(const ParticleSet &p, double skin, int n_thr
       const std::size_t ncx = static_cast<std::size_t>((xmax - xmin) / cell) + 1;
       const std::size_t ncy = static_cast<std::size_t>((ymax - ymin) / cell) + 1;
       const std::size_t nc = ncx * ncy;
+      grid_x0_ = xmin;
+      grid_y0_ = ymin;
+      grid_cell_ = cell;
+      grid_ncx_ = ncx;
+      grid_ncy_ = ncy;
 
       // Counting sort of discs into cells (ascending disc index inside each cell).
       disc_cell_.resize(nd);
@@ -197,6 +203,26 @@ void build_body_adjacency(const ParticleSet &p, PairContacts &pairs, std::size_t
       pairs.shared_body.push_back(static_cast<std::uint32_t>(b));
       pairs.shared_first_entry.push_back(e);
     }
+}
+
+void NeighbourSearch::append_discs_near_box(const Vec2 &lo, const Vec2 &hi, std::vector<std::uint32_t> &discs) const
+{
+  if (grid_ncx_ == 0 || grid_ncy_ == 0)
+    return;
+  // Cell index of a coordinate, clamped to the grid (discs beyond the grid's edges were put in
+  // its outer cells).
+  const auto cell_index = [this](double value, double origin, std::size_t n) {
+    const double c = std::floor((value - origin) / grid_cell_);
+    return std::isnan(c) ? std::size_t(0) : static_cast<std::size_t>(std::clamp(c, 0.0, static_cast<double>(n - 1)));
+  };
+  const std::size_t cx0 = cell_index(lo.x(), grid_x0_, grid_ncx_), cx1 = cell_index(hi.x(), grid_x0_, grid_ncx_);
+  const std::size_t cy0 = cell_index(lo.y(), grid_y0_, grid_ncy_), cy1 = cell_index(hi.y(), grid_y0_, grid_ncy_);
+  for (std::size_t cy = cy0; cy <= cy1; ++cy)
+    for (std::size_t cx = cx0; cx <= cx1; ++cx)
+      {
+        const std::size_t c = cy * grid_ncx_ + cx;
+        discs.insert(discs.end(), cell_disc_.begin() + cell_start_[c], cell_disc_.begin() + cell_start_[c + 1]);
+      }
 }
 
 void NeighbourSearch::rebuild_wall(const ParticleSet &p, const Wall &wall, double skin, WallContacts &contacts)

@@ -73,7 +73,17 @@ public:
   /// Rebuilds the list of discs within r + skin of the wall, keeping history.
   void rebuild_wall(const ParticleSet &particles, const Wall &wall, double skin, WallContacts &contacts);
 
+  /// Appends to `discs` every disc whose cell, in the grid of the last rebuild_pairs(), meets the
+  /// box [lo, hi] (cell by cell, ascending disc index inside a cell): the candidates near an
+  /// object inside the box, such as a sheet segment. Every disc whose centre lies in the box is
+  /// among them; others may be too.
+  void append_discs_near_box(const Vec2 &lo, const Vec2 &hi, std::vector<std::uint32_t> &discs) const;
+
 private:
+  // The cell grid of the last rebuild_pairs(): origin, cell size and number of cells per row and
+  // column (0 when there were no discs).
+  double grid_x0_ = 0.0, grid_y0_ = 0.0, grid_cell_ = 1.0;
+  std::size_t grid_ncx_ = 0, grid_ncy_ = 0;
   std::vector<std::uint32_t> cell_start_, cell_disc_, disc_cell_, fill_;
   std::vector<std::vector<std::uint32_t>> thread_i_, thread_j_;
   PairContacts previous_;

@@ -75,6 +75,63 @@ std::size_t DemSystem::add_wall(const Wall &wall)
   return walls_.size() - 1;
 }
 
+std::size_t DemSystem::add_sheet(const SparSheet &sheet)
+{
+  sheets_.push_back(sheet);
+  sheet_contacts_.emplace_back();
+  if (time_step_ > critical_time_step())
+    {
+      if (settings_.time_step > 0.0)
+        {
+          // A step the user chose that the sheet cannot follow: refuse the sheet, keep the system.
+          std::string message;
+          try
+            {
+              set_time_step(time_step_);
+            }
+          catch (const std::invalid_argument &e)
+            {
+              message = e.what();
+            }
+          sheets_.pop_back();
+          sheet_contacts_.pop_back();
+          throw std::invalid_argument("sheet '" + sheet.name() + "': " + message);
+        }
+      set_time_step(settings_.time_step_safety * critical_time_step());
+    }
+  SparSheet &added = sheets_.back();
+  added.start_forces(settings_.gravity); // the first half kick sees the weight
+  skin_ = std::max(skin_, 1.05 * added.interface_law().max_bonded_gap());
+  rebuild_needed_ = true;
+  // A sheet laid during a run brings its energy with it: booked as work supplied, so that the
+  // energy balance stays continuous.
+  if (forces_initialised_ && settings_.track_energy)
+    accumulated_.boundary_work += added.kinetic_energy() + added.elastic_energy() +
+                                  added.gravitational_energy(settings_.gravity);
+  return sheets_.size() - 1;
+}
+
+double DemSystem::sheet_contact_stiffness() const
+{
+  double k = 0.0;
+  for (const SparSheet &sheet : sheets_)
+    k = std::max({k, sheet.interface_law().normal_stiffness(), sheet.interface_law().shear_stiffness()});
+  for (const Wall &w : walls_)
+    k = std::max({k, w.law.normal_stiffness(), w.law.shear_stiffness()});
+  return k;
+}
+
+double DemSystem::required_sheet_mass_scaling(const SparSheet &sheet) const
+{
+  const double contact_stiffness = std::max({sheet_contact_stiffness(), sheet.interface_law().normal_stiffness(),
+                                             sheet.interface_law().shear_stiffness()});
+  const double dt = critical_time_step();
+  if (!std::isfinite(dt))
+    throw std::invalid_argument("sheet '" + sheet.name() + "': no movable particle sets a time step to scale "
+                                "the sheet's masses to");
+  return sheet.required_mass_scaling(dt, contact_stiffness);
+}
+
 double DemSystem::critical_time_step() const
 {
   double k_max = std::max(particle_law_.normal_stiffness(), particle_law_.shear_stiffness());
@@ -83,6 +140,12 @@ double DemSystem::critical_time_step() const
     {
       k_max = std::max({k_max, w.law.normal_stiffness(), w.law.shear_stiffness()});
       ks_max = std::max(ks_max, w.law.shear_stiffness());
+    }
+  for (const SparSheet &sheet : sheets_)
+    {
+      const LinearContactLaw &law = sheet.interface_law();
+      k_max = std::max({k_max, law.normal_stiffness(), law.shear_stiffness()});
+      ks_max = std::max(ks_max, law.shear_stiffness());
     }
   const ParticleSet &p = particles_;
   double dt = std::numeric_limits<double>::infinity();
@@ -96,6 +159,12 @@ double DemSystem::critical_time_step() const
         lever = std::max(lever, std::hypot(p.disc_offset_x[d], p.disc_offset_y[d]) + p.disc_radius[d]);
       dt = std::min(dt, std::sqrt(p.inertia[b] / (ks_max * lever * lever)));
     }
+  if (!sheets_.empty())
+    {
+      const double contact_stiffness = sheet_contact_stiffness();
+      for (const SparSheet &sheet : sheets_)
+        dt = std::min(dt, sheet.critical_time_step(contact_stiffness));
+    }
   return dt;
 }
 
@@ -106,8 +175,10 @@ void DemSystem::set_time_step(double dt)
     {
       std::ostringstream message;
       message << "time step " << dt << " s is above the stable limit " << dt_crit
-              << " s (sqrt(m_min / k_max) for these particles and stiffnesses); "
-                 "lower 'time step' or leave it 0 for automatic";
+              << " s (sqrt(m_min / k_max) for these particles and stiffnesses"
+              << (sheets_.empty() ? "" : ", and sqrt(m_node / (2 J / l0 + k)) for the sheet nodes: "
+                                         "raise the sheet's mass scaling")
+              << "); lower 'time step' or leave it 0 for automatic";
       throw std::invalid_argument(message.str());
     }
   time_step_ = dt;
@@ -146,6 +217,16 @@ void DemSystem::bond_touching_contacts()
     for (ContactState &s : wc.state)
       if (s.touching)
         s.bonded = true;
+  for (SheetContacts &sc : sheet_contacts_)
+    {
+      for (ContactState &s : sc.state)
+        if (s.touching)
+          s.bonded = true;
+      for (SheetWallContacts &wc : sc.walls)
+        for (ContactState &s : wc.state)
+          if (s.touching)
+            s.bonded = true;
+    }
 }
 
 void DemSystem::run_steps(std::uint64_t n)
@@ -173,6 +254,8 @@ void DemSystem::step()
 {
   initialise_forces();
   kick_and_drift();
+  if (!sheets_.empty())
+    kick_and_drift_sheets();
   move_walls();
   rebuild_if_needed();
   compute_pair_forces();
@@ -255,12 +338,16 @@ void DemSystem::rebuild_if_needed()
       // move + growth + wall move. The skin must cover it.
       const double growth = radius_growth_since_rebuild_;
       rebuild_needed_ = 2.0 * (max_move + growth) > skin_ || max_move + growth + wall_move > skin_;
+      if (!rebuild_needed_ && !sheets_.empty())
+        rebuild_needed_ = sheet_contacts_stale(max_move + growth, wall_move);
     }
   if (!rebuild_needed_)
     return;
   neighbour_search_.rebuild_pairs(p, skin_, settings_.n_threads, pairs_);
   for (std::size_t w = 0; w < walls_.size(); ++w)
     neighbour_search_.rebuild_wall(p, walls_[w], skin_, wall_contacts_[w]);
+  for (std::size_t s = 0; s < sheets_.size(); ++s)
+    sheet_contact_search_.rebuild(p, neighbour_search_, sheets_[s], walls_, skin_, sheet_contacts_[s]);
   disc_x_at_rebuild_ = p.disc_x;
   disc_y_at_rebuild_ = p.disc_y;
   wall_start_at_rebuild_.resize(walls_.size());
@@ -464,6 +551,16 @@ void DemSystem::compute_wall_forces()
           total -= force;
           n_touching += state.touching;
         }
+      // Sheet nodes pressing on the wall (none without sheets): their force is part of the
+      // wall's load; n_contacts keeps counting discs (it is the particles' coordination).
+      for (std::size_t s = 0; s < sheets_.size(); ++s)
+        {
+          const SheetWallLoad load = evaluate_sheet_wall_contacts(sheets_[s], wall, sheet_contacts_[s].walls[w], dt);
+          total += load.force_on_wall;
+          friction += load.work.friction;
+          viscous += load.work.viscous;
+          n_broken_bonds_ += load.work.broken_bonds;
+        }
       wall.force_from_particles = total;
       wall.n_contacts = n_touching;
       if (settings_.track_energy && dt > 0.0)
@@ -481,7 +578,11 @@ void DemSystem::gather_forces_and_kick()
 {
   ParticleSet &p = particles_;
   const std::size_t nb = p.n_bodies();
+  for (SparSheet &sheet : sheets_)
+    sheet.start_forces(settings_.gravity);
   compute_wall_forces();
+  if (!sheets_.empty())
+    compute_sheet_forces_and_kick(); // adds the disc-sheet forces to the bodies before their kick
 
   const double half = 0.5 * time_step_, alpha = settings_.local_damping;
   const bool book_damping = settings_.track_energy && alpha > 0.0;
@@ -525,8 +626,67 @@ void DemSystem::gather_forces_and_kick()
     accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
 }
 
+bool DemSystem::sheet_contacts_stale(double disc_move, double wall_move) const
+{
+  // A point of a segment moves at most as far as the farther of its two nodes, so a disc and a
+  // segment approach by at most disc_move + node_move, a node and a wall by node_move + wall_move.
+  for (std::size_t s = 0; s < sheets_.size(); ++s)
+    {
+      const double node_move = largest_node_move(sheets_[s], sheet_contacts_[s]);
+      if (disc_move + node_move > skin_ || node_move + wall_move > skin_)
+        return true;
+    }
+  return false;
+}
+
+void DemSystem::kick_and_drift_sheets()
+{
+  for (SparSheet &sheet : sheets_)
+    {
+      const SparSheet::StepWork work = sheet.kick_and_drift(time_step_);
+      if (settings_.track_energy)
+        {
+          accumulated_.local_damping_dissipated -= work.damping;
+          accumulated_.boundary_work += work.boundary;
+        }
+    }
+}
+
+void DemSystem::compute_sheet_forces_and_kick()
+{
+  const double dt = time_step_;
+  const bool book = settings_.track_energy && dt > 0.0;
+  for (std::size_t s = 0; s < sheets_.size(); ++s)
+    {
+      SparSheet &sheet = sheets_[s];
+      sheet.add_axial_forces();
+      const SheetContactWork work = evaluate_sheet_contacts(particles_, sheet, sheet_contacts_[s], dt, book);
+      n_broken_bonds_ += work.broken_bonds;
+      const SparSheet::StepWork step = sheet.damp_and_kick(dt, settings_.local_damping, settings_.gravity);
+      if (book)
+        {
+          accumulated_.interface_friction_dissipated += work.friction;
+          accumulated_.viscous_dissipated += work.viscous;
+          accumulated_.local_damping_dissipated -= step.damping;
+          accumulated_.boundary_work += step.boundary;
+        }
+    }
+}
+
 void DemSystem::check_finite() const
 {
+  for (const SparSheet &sheet : sheets_)
+    for (std::size_t k = 0; k < sheet.n_nodes(); ++k)
+      if (!std::isfinite(sheet.x[k]) || !std::isfinite(sheet.y[k]) || !std::isfinite(sheet.vx[k]) ||
+          !std::isfinite(sheet.vy[k]))
+        {
+          std::ostringstream message;
+          message << "DEM: node " << k << " of sheet '" << sheet.name()
+                  << "' has a non-finite position or velocity at t = " << time_ << " s (step " << step_count_
+                  << "); likely causes: a time step above the sheet's stable limit (mass scaling too low) "
+                     "or a clamp moving far too fast";
+          throw std::runtime_error(message.str());
+        }
   const ParticleSet &p = particles_;
   for (std::size_t b = 0; b < p.n_bodies(); ++b)
     if (!std::isfinite(p.x[b]) || !std::isfinite(p.y[b]) || !std::isfinite(p.vx[b]) ||
@@ -561,6 +721,22 @@ EnergyBudget DemSystem::energy() const
       if (wall_contacts_[w].state[q].touching)
         e.elastic += walls_[w].law.elastic_energy(wall_contacts_[w].elastic_normal_force[q],
                                                   wall_contacts_[w].state[q].tangential_force);
+  for (std::size_t s = 0; s < sheets_.size(); ++s)
+    {
+      const SparSheet &sheet = sheets_[s];
+      const SheetContacts &c = sheet_contacts_[s];
+      e.sheet_kinetic += sheet.kinetic_energy();
+      e.sheet_elastic += sheet.elastic_energy();
+      e.gravitational += sheet.gravitational_energy(settings_.gravity);
+      for (std::size_t q = 0; q < c.size(); ++q)
+        if (c.state[q].touching)
+          e.elastic += sheet.interface_law().elastic_energy(c.elastic_normal_force[q], c.state[q].tangential_force);
+      for (std::size_t w = 0; w < c.walls.size() && w < walls_.size(); ++w)
+        for (std::size_t q = 0; q < c.walls[w].size(); ++q)
+          if (c.walls[w].state[q].touching)
+            e.elastic += walls_[w].law.elastic_energy(c.walls[w].elastic_normal_force[q],
+                                                      c.walls[w].state[q].tangential_force);
+    }
   return e;
 }
 
@@ -579,6 +755,8 @@ DemSystemState DemSystem::export_state() const
   s.damping_fx = damping_fx_;
   s.damping_fy = damping_fy_;
   s.damping_torque = damping_torque_;
+  s.sheets = sheets_;
+  s.sheet_contacts = sheet_contacts_;
   s.accumulated = accumulated_;
   s.time_step = time_step_;
   s.time = time_;
@@ -608,6 +786,20 @@ void DemSystem::restore_state(DemSystemState s)
       (!s.rebuild_needed && (s.disc_x_at_rebuild.size() != nd || s.disc_y_at_rebuild.size() != nd)) ||
       s.pairs.state.size() != s.pairs.disc_i.size() || s.pairs.disc_j.size() != s.pairs.disc_i.size())
     fail("inconsistent array sizes");
+  // The sheets are stored whole: the saved ones replace those of this system (a sheet laid
+  // during the run is restored too).
+  if (s.sheet_contacts.size() != s.sheets.size())
+    fail("the saved state has " + std::to_string(s.sheets.size()) + " sheets but contact lists for " +
+         std::to_string(s.sheet_contacts.size()));
+  for (std::size_t k = 0; k < s.sheets.size(); ++k)
+    {
+      const SheetContacts &c = s.sheet_contacts[k];
+      const std::size_t n_nodes = s.sheets[k].n_nodes();
+      if ((!s.rebuild_needed && (c.node_x_at_rebuild.size() != n_nodes || c.node_y_at_rebuild.size() != n_nodes ||
+                                 c.walls.size() != s.walls.size())) ||
+          c.segment.size() != c.disc.size() || c.state.size() != c.disc.size())
+        fail("inconsistent array sizes of sheet '" + s.sheets[k].name() + "'");
+    }
   particles_ = std::move(s.particles);
   particle_law_ = LinearContactLaw(s.particle_contact);
   walls_ = std::move(s.walls);
@@ -620,6 +812,11 @@ void DemSystem::restore_state(DemSystemState s)
   damping_fx_ = std::move(s.damping_fx);
   damping_fy_ = std::move(s.damping_fy);
   damping_torque_ = std::move(s.damping_torque);
+  sheets_ = std::move(s.sheets);
+  sheet_contacts_ = std::move(s.sheet_contacts);
+  for (SheetContacts &c : sheet_contacts_)
+    if (c.force_x.size() != c.size())
+      c.resize_results();
   accumulated_ = s.accumulated;
   skin_ = s.skin;
   radius_growth_since_rebuild_ = s.radius_growth_since_rebuild;
@@ -648,6 +845,15 @@ std::size_t DemSystem::n_touching_wall_contacts() const
   std::size_t n = 0;
   for (const Wall &w : walls_)
     n += w.n_contacts;
+  return n;
+}
+
+std::size_t DemSystem::n_touching_sheet_contacts() const
+{
+  std::size_t n = 0;
+  for (const SheetContacts &c : sheet_contacts_)
+    n += static_cast<std::size_t>(
+      std::count_if(c.state.begin(), c.state.end(), [](const ContactState &s) { return s.touching; }));
   return n;
 }
 } // namespace geohybrid::dem

@@ -12,9 +12,15 @@
 // force alpha |F| sign(v); it is meant for quasi-static problems and is zero for dynamics.
 // Every loop visits bodies and contacts in a fixed order and each result is written by exactly
 // one thread, so a run gives the same numbers, bit for bit, on any number of threads.
+//
+// Geosynthetic sheets (spar_sheet.h) are advanced by the same scheme and local damping; their
+// physics (axial forces, disc-sheet and node-wall contacts) lives in spar_sheet.* and
+// sheet_contacts.*, called from here. A system without sheets runs exactly as before.
 #include "contact_law.h"
 #include "contact_list.h"
 #include "particles.h"
+#include "sheet_contacts.h"
+#include "spar_sheet.h"
 #include "wall.h"
 
 #include <string>
@@ -43,13 +49,19 @@ struct EnergyBudget
   double friction_dissipated = 0.0;
   double viscous_dissipated = 0.0;   ///< normal dashpots
   double local_damping_dissipated = 0.0;
-  double boundary_work = 0.0;        ///< work done on the particles by moving walls
+  double boundary_work = 0.0;        ///< work done on the particles (and sheets) by moving walls and clamps
+  double sheet_kinetic = 0.0;        ///< kinetic energy of the sheets' free nodes (inertial mass)
+  double sheet_elastic = 0.0;        ///< axial strain energy of the sheets, sum 0.5 (J / l0) (l - l0)^2
+  double interface_friction_dissipated = 0.0; ///< slip work at disc-sheet contacts
 
-  /// Total (stored + dissipated - supplied); constant when the balance closes.
+  /// Total (stored + dissipated - supplied); constant when the balance closes. (Gravitational,
+  /// elastic and the other dissipated terms include the sheets' shares: their nodes' weight,
+  /// the interface and node-wall contact springs, dashpots and local damping.)
   double total() const
   {
     return kinetic + gravitational + elastic + friction_dissipated + viscous_dissipated +
-           local_damping_dissipated - boundary_work;
+           local_damping_dissipated - boundary_work + sheet_kinetic + sheet_elastic +
+           interface_friction_dissipated;
   }
 };
 
@@ -66,6 +78,8 @@ struct DemSystemState
   SoaVector<double> disc_x_at_rebuild, disc_y_at_rebuild;
   std::vector<Vec2> wall_start_at_rebuild;
   SoaVector<double> damping_fx, damping_fy, damping_torque;
+  std::vector<SparSheet> sheets;               ///< complete: nodes, forces, reactions, damping
+  std::vector<SheetContacts> sheet_contacts;   ///< with their node positions at the last rebuild
   EnergyBudget accumulated;
   double time_step = 0.0, time = 0.0, skin = 0.0;
   double radius_growth_since_rebuild = 0.0;
@@ -80,9 +94,18 @@ public:
 
   std::size_t add_wall(const Wall &wall);
 
+  /// Adds a geosynthetic sheet; returns its index. Its nodes start with their weight as force.
+  /// Added during a run (e.g. laid while a tank is filled), its energy counts as boundary work.
+  /// The sheet's interface stiffness and node dynamics enter the critical time step: an automatic
+  /// step is lowered if needed, a step the user chose is re-checked (throws
+  /// std::invalid_argument if it is now unstable: raise the sheet's mass scaling, see
+  /// SparSheet::required_mass_scaling).
+  std::size_t add_sheet(const SparSheet &sheet);
+
   /// PFC-style estimate of the stable step: the smallest sqrt(m / k) over translation and
   /// sqrt(I / (k_s l^2)) over rotation (l: the body's largest lever arm), with k the largest
-  /// stiffness any contact of the system can have.
+  /// stiffness any contact of the system can have; and over the free nodes of the sheets,
+  /// sqrt(m / (J / l0_left + J / l0_right + k)) (SparSheet::critical_time_step).
   double critical_time_step() const;
   /// Throws std::invalid_argument if dt exceeds the critical time step.
   void set_time_step(double dt);
@@ -117,6 +140,17 @@ public:
   const PairContacts &pair_contacts() const { return pairs_; }
   const std::vector<WallContacts> &wall_contacts() const { return wall_contacts_; }
   const LinearContactLaw &particle_law() const { return particle_law_; }
+  /// The sheets: nodes may be given velocities (SparSheet::prescribe_velocity) between steps;
+  /// moving nodes by hand needs request_neighbour_rebuild().
+  std::vector<SparSheet> &sheets() { return sheets_; }
+  const std::vector<SparSheet> &sheets() const { return sheets_; }
+  const std::vector<SheetContacts> &sheet_contacts() const { return sheet_contacts_; }
+  /// The stiffest contact a sheet node can meet (the interfaces' and walls' kn and ks) [N/m/m].
+  double sheet_contact_stiffness() const;
+  /// The mass scaling `sheet` needs so that adding it does not lower the system's critical time
+  /// step (SparSheet::required_mass_scaling for the current critical step and the stiffest
+  /// contact its nodes can meet, its own interface included). For quasi-static runs.
+  double required_sheet_mass_scaling(const SparSheet &sheet) const;
   const DemSettings &settings() const { return settings_; }
 
   /// Forces the next step to rebuild the neighbour lists (after moving particles or walls by hand).
@@ -132,9 +166,10 @@ public:
   /// system (different numbers of bodies, discs or walls, or an unstable time step).
   void restore_state(DemSystemState state);
 
-  /// Number of touching contacts between bodies, and with walls.
+  /// Number of touching contacts between bodies, with walls, and between discs and sheets.
   std::size_t n_touching_pairs() const;
   std::size_t n_touching_wall_contacts() const;
+  std::size_t n_touching_sheet_contacts() const;
 
 private:
   void kick_and_drift();
@@ -144,6 +179,10 @@ private:
   void compute_wall_forces();
   void gather_forces_and_kick();
   void check_finite() const;
+  // Sheets (called only when there are sheets).
+  bool sheet_contacts_stale(double disc_move, double wall_move) const;
+  void kick_and_drift_sheets();
+  void compute_sheet_forces_and_kick();
 
   ParticleSet particles_;
   LinearContactLaw particle_law_;
@@ -153,6 +192,9 @@ private:
   std::vector<Vec2> wall_force_previous_;
   PairContacts pairs_;
   NeighbourSearch neighbour_search_;
+  std::vector<SparSheet> sheets_;
+  std::vector<SheetContacts> sheet_contacts_;
+  SheetContactSearch sheet_contact_search_;
 
   double time_step_ = 0.0;
   double time_ = 0.0;

@@ -1,5 +1,8 @@
 #include "measurements.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace geohybrid::dem
 {
 std::array<double, 3> love_weber_stress(const DemSystem &system, const Region &region)
@@ -46,10 +49,55 @@ std::array<double, 3> love_weber_stress(const DemSystem &system, const Region &r
           add(wc.force_x[q], wc.force_y[q], closest.x() - p.x[b], closest.y() - p.y[b]);
         }
     }
+  // Sheets act on the bodies as walls do, at the contact's point on the sheet's centre line.
+  for (std::size_t s = 0; s < system.sheets().size(); ++s)
+    {
+      const SheetContacts &sc = system.sheet_contacts()[s];
+      for (std::size_t q = 0; q < sc.size(); ++q)
+        {
+          if (!sc.state[q].touching)
+            continue;
+          const std::uint32_t b = p.disc_body[sc.disc[q]];
+          if (!region.contains(p.x[b], p.y[b]))
+            continue;
+          const Vec2 point = point_on_segment(system.sheets()[s], sc.segment[q], sc.position[q]);
+          add(sc.force_x[q], sc.force_y[q], point.x() - p.x[b], point.y() - p.y[b]);
+        }
+    }
   // The force on a body at lever r pushes inward in compression: sum f (x) r is negative there,
   // which is the continuum sign (compression negative).
   const double A = region.area();
   return {s_xx / A, s_yy / A, 0.5 * (s_xy + s_yx) / A};
+}
+
+SheetFaceStresses sheet_face_stresses(const DemSystem &system, std::size_t s, std::size_t first, std::size_t last)
+{
+  if (s >= system.sheets().size())
+    throw std::out_of_range("sheet_face_stresses: there is no sheet " + std::to_string(s));
+  const SparSheet &sheet = system.sheets()[s];
+  const SheetContacts &c = system.sheet_contacts()[s];
+  const ParticleSet &p = system.particles();
+  last = std::min(last, sheet.n_segments());
+  SheetFaceStresses out;
+  double length = 0.0;
+  for (std::size_t k = first; k < last; ++k)
+    length += sheet.segment_length(k);
+  if (!(length > 0.0))
+    return out;
+  for (std::size_t q = 0; q < c.size(); ++q)
+    {
+      const std::size_t k = c.segment[q];
+      if (!c.state[q].touching || k < first || k >= last)
+        continue;
+      const Vec2 a = sheet.node(k), u = (sheet.node(k + 1) - a).normalized();
+      const Vec2 on_sheet(-c.force_x[q], -c.force_y[q]);
+      const bool left = cross(u, Vec2(p.disc_x[c.disc[q]], p.disc_y[c.disc[q]]) - a) > 0.0;
+      // The normal force pushes the sheet away from the disc: toward -perp(u) from the left.
+      const double normal = left ? -on_sheet.dot(perp(u)) : on_sheet.dot(perp(u));
+      (left ? out.normal_left : out.normal_right) += normal / length;
+      (left ? out.shear_left : out.shear_right) += on_sheet.dot(u) / length;
+    }
+  return out;
 }
 
 double porosity(const DemSystem &system, const Region &region)
@@ -67,8 +115,9 @@ double coordination_number(const DemSystem &system)
   const std::size_t nb = system.particles().n_bodies();
   if (nb == 0)
     return 0.0;
-  return (2.0 * static_cast<double>(system.n_touching_pairs()) +
-          static_cast<double>(system.n_touching_wall_contacts())) / static_cast<double>(nb);
+  return (2.0 * static_cast<double>(system.n_touching_pairs()) + static_cast<double>(system.n_touching_wall_contacts()) +
+          static_cast<double>(system.n_touching_sheet_contacts())) /
+         static_cast<double>(nb);
 }
 
 double unbalanced_force_ratio(const DemSystem &system)
@@ -94,6 +143,13 @@ double unbalanced_force_ratio(const DemSystem &system)
       if (wc.state[q].touching)
         {
           contact += std::hypot(wc.force_x[q], wc.force_y[q]);
+          ++n_contacts;
+        }
+  for (const SheetContacts &sc : system.sheet_contacts())
+    for (std::size_t q = 0; q < sc.size(); ++q)
+      if (sc.state[q].touching)
+        {
+          contact += std::hypot(sc.force_x[q], sc.force_y[q]);
           ++n_contacts;
         }
   if (n_bodies == 0 || n_contacts == 0 || contact == 0.0)

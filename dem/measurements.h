@@ -17,7 +17,7 @@ struct Region
 
 /// Love-Weber average stress over the bodies whose centre of mass lies in the region:
 ///   sigma_ab = -(1/A) sum_bodies sum_contacts f_a (x_c - x_body)_b,
-/// written per body so that clusters and walls need no special branch vector. Compression is
+/// written per body so that clusters, walls and sheets need no special branch vector. Compression is
 /// negative (continuum mechanics sign), components {xx, yy, xy} [Pa]. The xy entry is the
 /// symmetric part; equilibrium makes the skew part vanish.
 std::array<double, 3> love_weber_stress(const DemSystem &system, const Region &region);
@@ -26,8 +26,22 @@ std::array<double, 3> love_weber_stress(const DemSystem &system, const Region &r
 /// the region's edge are counted whole, so use regions much larger than a particle.
 double porosity(const DemSystem &system, const Region &region);
 
-/// Mean number of touching contacts per body, 2 N_c / N_b (wall contacts count once each).
+/// Mean number of touching contacts per body, 2 N_c / N_b (wall and sheet contacts count once each).
 double coordination_number(const DemSystem &system);
+
+/// What the discs apply to the two faces of a sheet, averaged over segments [first, last)
+/// (default: the whole sheet): the normal stress sum(Fn) / L and the shear stress
+/// sum(F . u) / L on each face, with L the current length of those segments, u the unit vector of
+/// each contact's segment (from node k to k + 1) and F the force on the sheet; the left face is the
+/// one perp(u) points to (the top of a sheet running along +x) [Pa]. A normal stress against the
+/// overburden gamma H, or the shear stresses against the head tension, checks a pull-out run.
+struct SheetFaceStresses
+{
+  double normal_left = 0.0, normal_right = 0.0;
+  double shear_left = 0.0, shear_right = 0.0;
+};
+SheetFaceStresses sheet_face_stresses(const DemSystem &system, std::size_t sheet, std::size_t first_segment = 0,
+                                      std::size_t last_segment = static_cast<std::size_t>(-1));
 
 /// PFC's unbalanced-force ratio: mean |resultant force| over movable bodies divided by the mean
 /// contact force magnitude; tends to 0 at static equilibrium.

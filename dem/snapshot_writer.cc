@@ -129,6 +129,68 @@ ContactLines wall_lines(const DemSystem &system)
   return lines;
 }
 
+/// Disc-sheet contacts: lines from the disc centre to the contact's point on the sheet's centre
+/// line; wall_index holds the sheet's index.
+ContactLines sheet_contact_lines(const DemSystem &system)
+{
+  const ParticleSet &p = system.particles();
+  ContactLines lines;
+  const auto &all = system.sheet_contacts();
+  for (std::size_t s = 0; s < all.size() && s < system.sheets().size(); ++s)
+    {
+      const SparSheet &sheet = system.sheets()[s];
+      const SheetContacts &c = all[s];
+      for (std::size_t q = 0; q < c.size(); ++q)
+        {
+          const ContactState &state = c.state[q];
+          if (!state.touching)
+            continue;
+          const std::uint32_t d = c.disc[q];
+          lines.add(Vec2(p.disc_x[d], p.disc_y[d]), point_on_segment(sheet, c.segment[q], value_or_zero(c.position, q)),
+                    value_or_zero(c.elastic_normal_force, q), state.tangential_force, value_or_zero(c.force_x, q),
+                    value_or_zero(c.force_y, q), state.bonded);
+          lines.wall_index.push_back(static_cast<std::int32_t>(s));
+        }
+    }
+  return lines;
+}
+
+/// Every sheet's nodes and segments, concatenated.
+struct SheetGeometry
+{
+  std::vector<double> position, velocity;     // nodes x 3
+  std::vector<std::int32_t> sheet_index;      // per node
+  std::vector<std::int64_t> connectivity;     // segments x 2, into the nodes
+  std::vector<double> tension, strain;        // per segment
+
+  std::size_t n_nodes() const { return sheet_index.size(); }
+  std::size_t n_segments() const { return tension.size(); }
+};
+
+SheetGeometry sheet_geometry(const DemSystem &system)
+{
+  SheetGeometry g;
+  for (std::size_t s = 0; s < system.sheets().size(); ++s)
+    {
+      const SparSheet &sheet = system.sheets()[s];
+      const auto first = static_cast<std::int64_t>(g.n_nodes());
+      for (std::size_t k = 0; k < sheet.n_nodes(); ++k)
+        {
+          g.position.insert(g.position.end(), {sheet.x[k], sheet.y[k], 0.0});
+          g.velocity.insert(g.velocity.end(), {sheet.vx[k], sheet.vy[k], 0.0});
+          g.sheet_index.push_back(static_cast<std::int32_t>(s));
+        }
+      for (std::size_t k = 0; k < sheet.n_segments(); ++k)
+        {
+          g.connectivity.insert(g.connectivity.end(), {first + static_cast<std::int64_t>(k),
+                                                       first + static_cast<std::int64_t>(k) + 1});
+          g.tension.push_back(value_or_zero(sheet.tension, k));
+          g.strain.push_back(sheet.segment_strain(k));
+        }
+    }
+  return g;
+}
+
 void write_lines(hid_t group, const ContactLines &lines, const std::string &where)
 {
   write_doubles(group, "points", lines.points, 3, where);
@@ -195,7 +257,25 @@ struct XdmfGridWriter
     out << "        </Grid>\n";
   }
 
-  void lines(const char *name, std::size_t m, bool with_wall_index)
+  void sheets(std::size_t n_nodes, std::size_t n_segments)
+  {
+    const std::string ns = std::to_string(n_nodes), ms = std::to_string(n_segments);
+    out << "        <Grid Name=\"sheets\" GridType=\"Uniform\">\n"
+        << "          <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << n_segments
+        << "\" NodesPerElement=\"2\">\n";
+    data_item("            ", ms + " 2", "Int", 8, "sheets/connectivity");
+    out << "          </Topology>\n"
+        << "          <Geometry GeometryType=\"XYZ\">\n";
+    data_item("            ", ns + " 3", "Float", 8, "sheets/position");
+    out << "          </Geometry>\n";
+    attribute("velocity", "Vector", "Node", ns + " 3", "Float", 8, "sheets/velocity");
+    attribute("sheet_index", "Scalar", "Node", ns, "Int", 4, "sheets/sheet_index");
+    attribute("tension", "Scalar", "Cell", ms, "Float", 8, "sheets/tension");
+    attribute("strain", "Scalar", "Cell", ms, "Float", 8, "sheets/strain");
+    out << "        </Grid>\n";
+  }
+
+  void lines(const char *name, std::size_t m, bool with_wall_index, const char *index_name = "wall_index")
   {
     const std::string ms = std::to_string(m), group = std::string(name) + "/";
     out << "        <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n"
@@ -210,7 +290,7 @@ struct XdmfGridWriter
     attribute("force_magnitude", "Scalar", "Cell", ms, "Float", 8, group + "force_magnitude");
     attribute("bonded", "Scalar", "Cell", ms, "Int", 4, group + "bonded");
     if (with_wall_index)
-      attribute("wall_index", "Scalar", "Cell", ms, "Int", 4, group + "wall_index");
+      attribute(index_name, "Scalar", "Cell", ms, "Int", 4, group + "wall_index");
     out << "        </Grid>\n";
   }
 };
@@ -222,9 +302,15 @@ std::string snapshot_name(std::size_t index)
   return name;
 }
 
+/// The sizes of one snapshot, stored as its attributes.
+struct SnapshotCounts
+{
+  std::uint64_t n_discs = 0, n_contacts = 0, n_wall_contacts = 0;
+  std::uint64_t n_sheet_nodes = 0, n_sheet_segments = 0, n_sheet_contacts = 0;
+};
+
 /// The <Grid> of one snapshot in the .xdmf; everything it needs is in the snapshot's attributes.
-std::string xdmf_entry(const std::string &h5_name, const std::string &name, double time, std::size_t n_discs,
-                       std::size_t n_contacts, std::size_t n_wall_contacts)
+std::string xdmf_entry(const std::string &h5_name, const std::string &name, double time, const SnapshotCounts &n)
 {
   std::ostringstream out;
   out.imbue(std::locale::classic());
@@ -233,12 +319,16 @@ std::string xdmf_entry(const std::string &h5_name, const std::string &name, doub
   out << "      <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
       << "        <Time Value=\"" << time << "\"/>\n";
   // ParaView does not read empty grids: leave them out.
-  if (n_discs > 0)
-    grid.particles(n_discs);
-  if (n_contacts > 0)
-    grid.lines("contacts", n_contacts, false);
-  if (n_wall_contacts > 0)
-    grid.lines("wall_contacts", n_wall_contacts, true);
+  if (n.n_discs > 0)
+    grid.particles(n.n_discs);
+  if (n.n_contacts > 0)
+    grid.lines("contacts", n.n_contacts, false);
+  if (n.n_wall_contacts > 0)
+    grid.lines("wall_contacts", n.n_wall_contacts, true);
+  if (n.n_sheet_segments > 0)
+    grid.sheets(n.n_sheet_nodes, n.n_sheet_segments);
+  if (n.n_sheet_contacts > 0)
+    grid.lines("sheet_contacts", n.n_sheet_contacts, true, "sheet_index");
   out << "      </Grid>\n";
   return out.str();
 }
@@ -318,7 +408,7 @@ SnapshotWriter SnapshotWriter::resume(const std::filesystem::path &directory, co
           {
             Handle group = hdf5::open_group(file.get(), name, where);
             double time = 0.0;
-            std::uint64_t n_discs = 0, n_contacts = 0, n_wall_contacts = 0;
+            SnapshotCounts counts;
             // A snapshot is complete when its attributes and last dataset are there.
             const bool complete = H5Aexists(group.get(), "time") > 0 && H5Aexists(group.get(), "n_discs") > 0 &&
                                   H5Aexists(group.get(), "n_contacts") > 0 &&
@@ -327,15 +417,20 @@ SnapshotWriter SnapshotWriter::resume(const std::filesystem::path &directory, co
             if (complete)
               {
                 hdf5::read_attribute(group.get(), "time", H5T_NATIVE_DOUBLE, &time, where);
-                hdf5::read_attribute(group.get(), "n_discs", H5T_NATIVE_UINT64, &n_discs, where);
-                hdf5::read_attribute(group.get(), "n_contacts", H5T_NATIVE_UINT64, &n_contacts, where);
-                hdf5::read_attribute(group.get(), "n_wall_contacts", H5T_NATIVE_UINT64, &n_wall_contacts, where);
+                hdf5::read_attribute(group.get(), "n_discs", H5T_NATIVE_UINT64, &counts.n_discs, where);
+                hdf5::read_attribute(group.get(), "n_contacts", H5T_NATIVE_UINT64, &counts.n_contacts, where);
+                hdf5::read_attribute(group.get(), "n_wall_contacts", H5T_NATIVE_UINT64, &counts.n_wall_contacts, where);
+                // Files written before sheets existed have no sheet counts: none.
+                for (auto [attribute, value] : {std::pair{"n_sheet_nodes", &counts.n_sheet_nodes},
+                                                std::pair{"n_sheet_segments", &counts.n_sheet_segments},
+                                                std::pair{"n_sheet_contacts", &counts.n_sheet_contacts}})
+                  if (H5Aexists(group.get(), attribute) > 0)
+                    hdf5::read_attribute(group.get(), attribute, H5T_NATIVE_UINT64, value, where);
               }
             keeping = complete && time <= keep_until_time;
             if (keeping)
               {
-                writer.xdmf_entries_.push_back(xdmf_entry(writer.h5_name_, name, time, n_discs, n_contacts,
-                                                          n_wall_contacts));
+                writer.xdmf_entries_.push_back(xdmf_entry(writer.h5_name_, name, time, counts));
                 continue;
               }
           }
@@ -373,6 +468,15 @@ void SnapshotWriter::write(const DemSystem &system)
     }
   const ContactLines pairs = pair_lines(system);
   const ContactLines walls = wall_lines(system);
+  const ContactLines sheet_contacts = sheet_contact_lines(system);
+  const SheetGeometry sheets = sheet_geometry(system);
+  SnapshotCounts counts;
+  counts.n_discs = n;
+  counts.n_contacts = pairs.size();
+  counts.n_wall_contacts = walls.size();
+  counts.n_sheet_nodes = sheets.n_nodes();
+  counts.n_sheet_segments = sheets.n_segments();
+  counts.n_sheet_contacts = sheet_contacts.size();
 
   const std::string name = snapshot_name(n_snapshots());
   const std::string where = describe(h5_path_);
@@ -393,6 +497,9 @@ void SnapshotWriter::write(const DemSystem &system)
       write_count(snapshot.get(), "n_bodies", p.n_bodies(), where);
       write_count(snapshot.get(), "n_contacts", pairs.size(), where);
       write_count(snapshot.get(), "n_wall_contacts", walls.size(), where);
+      write_count(snapshot.get(), "n_sheet_nodes", counts.n_sheet_nodes, where);
+      write_count(snapshot.get(), "n_sheet_segments", counts.n_sheet_segments, where);
+      write_count(snapshot.get(), "n_sheet_contacts", counts.n_sheet_contacts, where);
       {
         Handle g = create_group(snapshot.get(), "particles", where);
         write_doubles(g.get(), "position", position, 3, where);
@@ -407,6 +514,21 @@ void SnapshotWriter::write(const DemSystem &system)
         write_lines(g.get(), pairs, where);
       }
       {
+        Handle g = create_group(snapshot.get(), "sheets", where);
+        write_doubles(g.get(), "position", sheets.position, 3, where);
+        write_doubles(g.get(), "velocity", sheets.velocity, 3, where);
+        write_int32s(g.get(), "sheet_index", sheets.sheet_index, where);
+        write_int64s(g.get(), "connectivity", sheets.connectivity, 2, where);
+        write_doubles(g.get(), "tension", sheets.tension, 1, where);
+        write_doubles(g.get(), "strain", sheets.strain, 1, where);
+      }
+      {
+        Handle g = create_group(snapshot.get(), "sheet_contacts", where);
+        write_lines(g.get(), sheet_contacts, where);
+        write_int32s(g.get(), "wall_index", sheet_contacts.wall_index, where);
+      }
+      // Written last: its presence marks a complete snapshot (resume()).
+      {
         Handle g = create_group(snapshot.get(), "wall_contacts", where);
         write_lines(g.get(), walls, where);
         write_int32s(g.get(), "wall_index", walls.wall_index, where);
@@ -415,7 +537,7 @@ void SnapshotWriter::write(const DemSystem &system)
     file.close(where, "closing the file");
   }
 
-  xdmf_entries_.push_back(xdmf_entry(h5_name_, name, system.time(), n, pairs.size(), walls.size()));
+  xdmf_entries_.push_back(xdmf_entry(h5_name_, name, system.time(), counts));
   try
     {
       write_xdmf();

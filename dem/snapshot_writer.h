@@ -19,8 +19,20 @@
 //     contacts/tangential_force m      double  Ft along t on the i side [N/m]
 //     contacts/force_magnitude  m      double  |(force_x, force_y)| on disc i, dashpot included [N/m]
 //     contacts/bonded           m      int32   1 if the contact is bonded
+//     sheets/position           N x 3  double  sheet nodes, all sheets one after the other [m]
+//     sheets/velocity           N x 3  double  [m/s]
+//     sheets/sheet_index        N      int32   index of the node's sheet in DemSystem::sheets()
+//     sheets/connectivity       S x 2  int64   segment k joins nodes (i, i + 1) of one sheet
+//     sheets/tension            S      double  axial force of the segment [N/m]
+//     sheets/strain             S      double  (l - l0) / l0, negative when slack [-]
+//     sheet_contacts/...        the contact datasets, lines from the disc centre to the contact's
+//                               point on the sheet's centre line, plus wall_index (int32) holding
+//                               the sheet's index
 //     wall_contacts/...         same datasets with w lines from the disc centre to the closest
-//                               point of the wall, plus wall_index (int32)
+//                               point of the wall, plus wall_index (int32); written last
+//
+// Snapshot attributes also give n_sheet_nodes, n_sheet_segments, n_sheet_contacts (uint64; absent
+// in files written before sheets existed, read as 0).
 //
 // Contacts are those with ContactState::touching, in the order of the contact lists.
 // Datasets of an empty set have a zero first dimension; the XDMF file then leaves out the grid,
