@@ -199,6 +199,26 @@ std::vector<dem::BiaxialCurve> run_biaxial_campaign(const BiaxialCampaign &campa
   return curves;
 }
 
+double mean_initial_porosity(const std::vector<dem::BiaxialCurve> &curves)
+{
+  double porosity = 0.0;
+  for (const dem::BiaxialCurve &c : curves)
+    porosity += c.initial_porosity / static_cast<double>(curves.size());
+  return porosity;
+}
+
+void set_biaxial_results(Summary &summary, const dem::BiaxialParameters &r, double porosity)
+{
+  summary.set("peak_friction_angle_deg", r.peak_friction_angle_deg);
+  summary.set("residual_friction_angle_deg", r.residual_friction_angle_deg);
+  summary.set("cohesion_Pa", r.cohesion);
+  summary.set("young_modulus_Pa", r.young_modulus);
+  summary.set("young_modulus_50_Pa", r.young_modulus_50);
+  summary.set("poisson_ratio", r.poisson_ratio);
+  summary.set("dilatancy_angle_deg", r.dilatancy_angle_deg);
+  summary.set("porosity", porosity);
+}
+
 int run_biaxial_command(const std::string &input_file, bool resume)
 {
   if (resume)
@@ -237,20 +257,11 @@ int run_biaxial_command(const std::string &input_file, bool resume)
   const dem::BiaxialParameters r = dem::analyse_biaxial_curves(curves);
   Summary summary;
   summary.set("command", "biaxial");
-  summary.set("peak_friction_angle_deg", r.peak_friction_angle_deg);
-  summary.set("residual_friction_angle_deg", r.residual_friction_angle_deg);
-  summary.set("cohesion_Pa", r.cohesion);
-  summary.set("young_modulus_Pa", r.young_modulus);
-  summary.set("young_modulus_50_Pa", r.young_modulus_50);
-  summary.set("poisson_ratio", r.poisson_ratio);
-  summary.set("dilatancy_angle_deg", r.dilatancy_angle_deg);
-  double porosity = 0.0, inertial = 0.0;
+  const double porosity = mean_initial_porosity(curves);
+  double inertial = 0.0;
   for (const dem::BiaxialCurve &c : curves)
-    {
-      porosity += c.initial_porosity / curves.size();
-      inertial = std::max(inertial, c.inertial_number);
-    }
-  summary.set("porosity", porosity);
+    inertial = std::max(inertial, c.inertial_number);
+  set_biaxial_results(summary, r, porosity);
   summary.set("max_inertial_number", inertial);
   summary.set("n_particles", static_cast<double>(campaign.sample.n_particles));
   summary.set("wall_time_s", wall_time);

@@ -11,6 +11,8 @@
 
 namespace geohybrid::apps
 {
+class Summary; // run_directory.h
+
 void declare_biaxial_parameters(dealii::ParameterHandler &prm);
 int run_biaxial_command(const std::string &input_file, bool resume);
 
@@ -23,6 +25,13 @@ struct BiaxialCampaign
 };
 /// Reads the Sample, Particle contact, Wall contact and Test subsections. Throws naming `where`.
 BiaxialCampaign parse_biaxial_campaign(dealii::ParameterHandler &prm, const std::string &where);
+
+/// Mean initial porosity of the samples of a campaign.
+double mean_initial_porosity(const std::vector<dem::BiaxialCurve> &curves);
+
+/// Writes the macroscopic parameters of a campaign into a summary, under the keys of the
+/// biaxial summary contract (peak_friction_angle_deg, ..., porosity); shared with `calibrate`.
+void set_biaxial_results(Summary &summary, const dem::BiaxialParameters &parameters, double porosity);
 
 /// Runs the campaign: one REDF sample (same seed) and one test per confining stress.
 std::vector<dem::BiaxialCurve> run_biaxial_campaign(const BiaxialCampaign &campaign, bool show_progress);

@@ -331,9 +331,7 @@ int run_calibrate_command(const std::string &input_file, bool resume)
       }
     last_wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
     last_parameters = dem::analyse_biaxial_curves(curves);
-    last_porosity = 0.0;
-    for (const dem::BiaxialCurve &c : curves)
-      last_porosity += c.initial_porosity / curves.size();
+    last_porosity = mean_initial_porosity(curves);
     dem::MacroResponse m;
     m.friction_angle_deg = last_parameters.peak_friction_angle_deg;
     m.young_modulus = last_parameters.young_modulus;
@@ -412,14 +410,7 @@ int run_calibrate_command(const std::string &input_file, bool resume)
   summary.set("normal_stiffness_N_per_m_per_m", particle.normal_stiffness);
   summary.set("shear_stiffness_N_per_m_per_m", particle.shear_stiffness);
   summary.set("stiffness_ratio", particle.shear_stiffness / particle.normal_stiffness);
-  summary.set("peak_friction_angle_deg", achieved.friction_angle_deg);
-  summary.set("young_modulus_Pa", achieved.young_modulus);
-  summary.set("poisson_ratio", achieved.poisson_ratio);
-  summary.set("residual_friction_angle_deg", last_parameters.residual_friction_angle_deg);
-  summary.set("cohesion_Pa", last_parameters.cohesion);
-  summary.set("young_modulus_50_Pa", last_parameters.young_modulus_50);
-  summary.set("dilatancy_angle_deg", last_parameters.dilatancy_angle_deg);
-  summary.set("porosity", last_porosity);
+  set_biaxial_results(summary, last_parameters, last_porosity); // the last campaign: the achieved values
   summary.set("target_friction_angle_deg", targets.friction_angle_deg);
   summary.set("target_young_modulus_Pa", targets.young_modulus);
   summary.set("target_poisson_ratio", targets.poisson_ratio ? *targets.poisson_ratio : std::nan(""));
