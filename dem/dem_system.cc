@@ -134,17 +134,17 @@ double DemSystem::required_sheet_mass_scaling(const SparSheet &sheet) const
 
 double DemSystem::critical_time_step() const
 {
-  double k_max = std::max(particle_law_.normal_stiffness(), particle_law_.shear_stiffness());
-  double ks_max = particle_law_.shear_stiffness();
+  // The stiffest law any contact of the system can have.
+  double kn_max = particle_law_.normal_stiffness(), ks_max = particle_law_.shear_stiffness();
   for (const Wall &w : walls_)
     {
-      k_max = std::max({k_max, w.law.normal_stiffness(), w.law.shear_stiffness()});
+      kn_max = std::max(kn_max, w.law.normal_stiffness());
       ks_max = std::max(ks_max, w.law.shear_stiffness());
     }
   for (const SparSheet &sheet : sheets_)
     {
       const LinearContactLaw &law = sheet.interface_law();
-      k_max = std::max({k_max, law.normal_stiffness(), law.shear_stiffness()});
+      kn_max = std::max(kn_max, law.normal_stiffness());
       ks_max = std::max(ks_max, law.shear_stiffness());
     }
   const ParticleSet &p = particles_;
@@ -153,11 +153,22 @@ double DemSystem::critical_time_step() const
     {
       if (p.inverse_mass[b] == 0.0)
         continue;
-      dt = std::min(dt, std::sqrt(p.mass[b] / k_max));
-      double lever = 0.0;
+      const double n_contacts = max_contacts_per_disc * p.n_discs[b];
+      // Rotational stiffness of the contacts about the centre of mass, for contacts spread evenly
+      // round each disc (d: the disc's offset from the centre of mass, r its radius): the shear
+      // spring acts at a lever r + d cos(theta), the normal spring at d sin(theta), whose squares
+      // average to r^2 + d^2 / 2 and d^2 / 2.
+      double rotational_stiffness = 0.0;
       for (std::uint32_t d = p.first_disc[b]; d < p.first_disc[b] + p.n_discs[b]; ++d)
-        lever = std::max(lever, std::hypot(p.disc_offset_x[d], p.disc_offset_y[d]) + p.disc_radius[d]);
-      dt = std::min(dt, std::sqrt(p.inertia[b] / (ks_max * lever * lever)));
+        {
+          const double offset2 = p.disc_offset_x[d] * p.disc_offset_x[d] + p.disc_offset_y[d] * p.disc_offset_y[d];
+          const double radius2 = p.disc_radius[d] * p.disc_radius[d];
+          rotational_stiffness +=
+            max_contacts_per_disc * (ks_max * (radius2 + 0.5 * offset2) + kn_max * 0.5 * offset2);
+        }
+      const double omega2_translation = n_contacts * (kn_max + ks_max) * p.inverse_mass[b];
+      const double omega2_rotation = 2.0 * rotational_stiffness * p.inverse_inertia[b];
+      dt = std::min(dt, 2.0 / std::sqrt(std::max(omega2_translation, omega2_rotation)));
     }
   if (!sheets_.empty())
     {
@@ -175,7 +186,8 @@ void DemSystem::set_time_step(double dt)
     {
       std::ostringstream message;
       message << "time step " << dt << " s is above the stable limit " << dt_crit
-              << " s (sqrt(m_min / k_max) for these particles and stiffnesses"
+              << " s (the bound for a dense packing of these particles and stiffnesses, see "
+                 "DemSystem::critical_time_step"
               << (sheets_.empty() ? "" : ", and sqrt(m_node / (2 J / l0 + k)) for the sheet nodes: "
                                          "raise the sheet's mass scaling")
               << "); lower 'time step' or leave it 0 for automatic";

@@ -222,7 +222,7 @@ std::string runtime_error_of(F &&f)
   return "";
 }
 
-constexpr int n_half = 700; // the roof reaches the packing after ~550 steps
+constexpr int n_half = 1200; // the roof reaches the packing before that (checked below)
 } // namespace
 
 // 2N steps straight == N steps, checkpoint, a fresh system built from the same inputs, restore,

@@ -29,7 +29,10 @@ DemSettings incline_settings(double angle)
   DemSettings s;
   s.gravity = g * Vec2(std::sin(angle), -std::cos(angle));
   s.local_damping = 0.0;
-  s.time_step_safety = 0.2; // 2 pi / 0.2 ~ 30 steps per period of the stiffest contact mode
+  // dt = 0.2 sqrt(m / kn): 2 pi / 0.2 ~ 30 steps per period of the contact. The critical step
+  // assumes a dense packing, 2 / sqrt(12 kn / m) = sqrt(m / kn) / sqrt(3) for a disc with
+  // ks = kn / 2 (DemSystem::critical_time_step), so this is sqrt(3) x 0.2 of it.
+  s.time_step_safety = 0.2 * std::sqrt(3.0);
   return s;
 }
 
