@@ -83,6 +83,20 @@ double stress_error(const DemSystem &system, const WallPolygon &polygon, double 
   return polygon.largest_relative_stress_error(system, target);
 }
 
+/// The contact time sqrt(m / kn) of the lightest movable body with the particles' normal
+/// stiffness: the time scale of the grains' response, against which growth is made slow.
+double lightest_contact_time(const DemSystem &system)
+{
+  const ParticleSet &p = system.particles();
+  double lightest = std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    if (p.inverse_mass[b] > 0.0)
+      lightest = std::min(lightest, p.mass[b]);
+  if (!std::isfinite(lightest))
+    throw std::invalid_argument("REDF: no movable particle to grow");
+  return std::sqrt(lightest / system.particle_law().normal_stiffness());
+}
+
 DemSettings redf_settings(const RedfSpec &s)
 {
   DemSettings settings;
@@ -306,7 +320,14 @@ RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &s, const RedfGr
   // Grow while the assembly is loose; once it jams (mean wall stress above the target) above
   // the target porosity, lower the growth friction so the grains rearrange, then grow again.
   // Stop when it is jammed at the target porosity.
-  const double growth_per_step = 2e-5; // relative radius growth per step: slow, quasi-static
+  // Rates in time, not per step, so that the sample does not depend on the time step: the
+  // relative radius growth is 4e-5 per contact time tau = sqrt(m / kn) of the lightest body at
+  // its starting size (slow: quasi-static), and a jammed assembly relaxes 500 tau between two
+  // friction drops. (Set in 2026 with dt = tau / 2, i.e. 2e-5 per step and 1000 steps.)
+  const double tau = lightest_contact_time(system);
+  const double growth_per_step = 4e-5 * system.time_step() / tau;
+  const std::uint64_t relax_steps_per_friction_drop =
+    std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(500.0 * tau / system.time_step())));
   double friction_deg = s.initial_growth_friction_deg >= 0.0 ? s.initial_growth_friction_deg
                                                             : s.particle_contact.friction_angle_deg;
   const auto use_friction = [&](double degrees) {
@@ -316,7 +337,6 @@ RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &s, const RedfGr
   };
   use_friction(friction_deg);
   std::uint64_t steps = 0, steps_jammed = 0;
-  const std::uint64_t relax_steps_per_friction_drop = 1000;
   const double start_porosity = porosity();
   const double upper = s.target_porosity + 0.5 * s.porosity_tolerance;
   for (;;)

@@ -646,8 +646,8 @@ BalanceRun run_balance(const SceneOptions &o, int n_steps)
 
 // Without dissipation (no friction, no dashpot, no damping, the clamp at rest), kinetic +
 // gravitational + elastic energy of discs and sheet is conserved up to the integrator's error:
-// measured 4.7e-5, 1.7e-5, 3.6e-6 of the stored energy at 0.2, 0.1, 0.05 x the critical step.
-// 2e-4 at 0.1 leaves a factor 10.
+// measured 4.7e-5, 1.7e-5, 3.6e-6 of the stored energy at dt = 2e-5, 1e-5, 5e-6 s.
+// 2e-4 at 1e-5 s leaves a factor 10.
 TEST(SheetEnergy, ConservedWithoutDissipation)
 {
   SceneOptions o;
@@ -655,7 +655,7 @@ TEST(SheetEnergy, ConservedWithoutDissipation)
   o.restitution = 1.0;
   o.local_damping = 0.0;
   o.clamp_speed = 0.0;
-  o.safety = 0.1;
+  o.safety = 0.2; // dt = 9.4e-6 s (the critical step, 4.7e-5 s, is set by the clusters)
   const BalanceRun r = run_balance(o, 4000);
   EXPECT_EQ(r.end.interface_friction_dissipated, 0.0);
   EXPECT_EQ(r.end.friction_dissipated, 0.0);
@@ -667,13 +667,13 @@ TEST(SheetEnergy, ConservedWithoutDissipation)
 // With interface and wall friction, dashpots, local damping on discs and nodes and the clamp pulling
 // the sheet out from under the discs: what the stored energy loses plus the clamp's work is booked
 // in the dissipation terms, so total() stays constant: measured 2.4e-5, 9.6e-6, 3.1e-6 of the
-// stored energy at 0.2, 0.1, 0.05 x the critical step. The clamp supplies 17 % of the stored energy
+// stored energy at dt = 2e-5, 1e-5, 5e-6 s. The clamp supplies 17 % of the stored energy
 // and the interface friction dissipates 0.17 %: leaving either out of the books breaks the 2e-4
 // tolerance several times over.
 TEST(SheetEnergy, ClosesWithInterfaceFrictionAndClampWork)
 {
   SceneOptions o;
-  o.safety = 0.1;
+  o.safety = 0.2; // dt = 9.4e-6 s
   const BalanceRun r = run_balance(o, 6000);
   EXPECT_GT(r.end.interface_friction_dissipated, 1e-3 * r.scale);
   EXPECT_GT(r.end.boundary_work, 0.1 * r.scale);
@@ -687,7 +687,7 @@ TEST(SheetEnergy, ClosesWithInterfaceFrictionAndClampWork)
 TEST(SheetEnergy, SheetLaidDuringTheRun)
 {
   SceneOptions o;
-  o.safety = 0.1;
+  o.safety = 0.2;
   o.lay_sheet = false;
   DemSystem system = sheet_scene(o);
   system.step();
@@ -714,8 +714,8 @@ TEST(SheetThreads, OneAndTwoThreadsBitForBit)
   DemSystem one = sheet_scene(o);
   o.n_threads = 2;
   DemSystem two = sheet_scene(o);
-  one.run_steps(1500);
-  two.run_steps(1500);
+  one.run_steps(3000);
+  two.run_steps(3000);
   EXPECT_GT(one.n_touching_sheet_contacts(), 10u);
   EXPECT_EQ(one.particles().x, two.particles().x);
   EXPECT_EQ(one.particles().vy, two.particles().vy);
@@ -794,10 +794,10 @@ TEST(SheetCheckpoint, ResumedRunIsBitForBitTheStraightRun)
   const fs::path file = directory.path / "checkpoint.h5";
   const SceneOptions o;
   DemSystem straight = sheet_scene(o);
-  straight.run_steps(1600);
+  straight.run_steps(3200);
   {
     DemSystem first = sheet_scene(o);
-    first.run_steps(800);
+    first.run_steps(1600);
     const DemSystemState saved = first.export_state();
     EXPECT_GT(first.n_touching_sheet_contacts(), 5u);
     std::size_t node_wall = 0;
@@ -810,7 +810,7 @@ TEST(SheetCheckpoint, ResumedRunIsBitForBitTheStraightRun)
   }
   DemSystem resumed = sheet_scene(o);
   resumed.restore_state(read_checkpoint(file));
-  resumed.run_steps(800);
+  resumed.run_steps(1600);
   const DemSystemState a = straight.export_state(), b = resumed.export_state();
   expect_same_sheets(a, b);
   EXPECT_EQ(a.particles.x, b.particles.x);

@@ -573,7 +573,8 @@ TEST(TimeStep, CriticalStepStableForAClusterPacking)
       system.run_steps(3000);
       EXPECT_LT(stored_energy(), 1.001 * e0) << "ks / kn = " << shear_ratio;
       EXPECT_GT(stored_energy(), 0.9 * e0) << "ks / kn = " << shear_ratio;
-      EXPECT_GT(system.n_touching_pairs(), 0.98 * touching) << "ks / kn = " << shear_ratio;
+      // Kicked grains may slide off a contact or two; a blow-up loses most (at 2 x: a third).
+      EXPECT_GT(system.n_touching_pairs(), 0.9 * touching) << "ks / kn = " << shear_ratio;
     }
 }
 
