@@ -43,6 +43,8 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
     throw std::invalid_argument("biaxial test: the final axial strain must lie in (0, 0.5)");
   if (spec.top_wall_speed < 0.0 || (spec.top_wall_speed == 0.0 && !(spec.target_inertial_number > 0.0)))
     throw std::invalid_argument("biaxial test: the top wall speed must be positive (or set an inertial number)");
+  if (!(spec.ramp_strain >= 0.0 && spec.ramp_strain < spec.final_axial_strain))
+    throw std::invalid_argument("biaxial test: the speed ramp's strain must lie in [0, final axial strain)");
 
   ConsolidationSpec consolidation;
   consolidation.stress = spec.confining_stress;
@@ -69,7 +71,11 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
   walls[box.bottom].control = WallControl::prescribed_velocity;
   walls[box.bottom].velocity = Vec2::Zero();
   walls[box.top].control = WallControl::prescribed_velocity;
-  walls[box.top].velocity = Vec2(0.0, -speed);
+  // The top wall accelerates uniformly from rest to V over the first ramp_strain of axial strain:
+  // started at V at once, it would send a stress wave through the sample (a jump of about
+  // rho c V, some 10 kPa at V = 9 cm/s) that spoils the first points, where the modulus is read.
+  const double ramp_time = spec.ramp_strain > 0.0 ? 2.0 * spec.ramp_strain * H0 / speed : 0.0;
+  const double dt = system.time_step();
 
   // Stresses are averaged over each recording interval, as a load cell would: the force on a
   // wall touched by a few dozen grains fluctuates from step to step.
@@ -91,6 +97,8 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
   double next_record = spec.record_interval;
   for (;;)
     {
+      const double elapsed = dt * static_cast<double>(curve.compression_steps);
+      walls[box.top].velocity = Vec2(0.0, -speed * (elapsed < ramp_time ? elapsed / ramp_time : 1.0));
       box.update_loaded_lengths(system);
       system.step();
       ++curve.compression_steps;

@@ -38,6 +38,7 @@ struct BiaxialSpec
   double final_axial_strain = 0.10; ///< [-]
   double record_interval = 1e-3;    ///< axial strain between recorded points [-]
   double servo_max_speed = 0.05;    ///< cap on the lateral walls' speed [m/s]
+  double ramp_strain = 0.005;       ///< the top wall reaches V after this axial strain [-]
   /// Before shearing, the sample is consolidated to sigma_0 (consolidate_isotropically) with
   /// these tolerances: a sample made at one stress serves tests at others.
   double consolidation_stress_tolerance = 0.02;  ///< [-]

@@ -180,4 +180,7 @@ TEST(Biaxial, BadInputRefused)
   DemSystem empty(ParticleSet{}, LinearContactLaw{}, [] { DemSettings s; s.time_step = 1e-6; return s; }());
   RectangularBox box = RectangularBox::add_to(empty, 0, 0, 1, 1, LinearContactLaw{}, 0.1);
   EXPECT_THROW(run_biaxial_test(empty, box, zero_speed, 1e-3, 2650.0), std::invalid_argument);
+  BiaxialSpec long_ramp;
+  long_ramp.ramp_strain = long_ramp.final_axial_strain; // the test would end before reaching V
+  EXPECT_THROW(run_biaxial_test(empty, box, long_ramp, 1e-3, 2650.0), std::invalid_argument);
 }
