@@ -185,7 +185,8 @@ std::optional<dem::StoredSample> read_campaign_sample(const BiaxialCampaign &cam
     {
       std::string list;
       for (const std::string &d : differences)
-        list += (list.empty() ? "" : "; ") + d;
+        list += (list.empty() ? "" : "; ") + d +
+                (d.rfind("target_stress", 0) == 0 ? " (the lowest of 'Test/confining stresses')" : "");
       throw std::invalid_argument("'Sample/sample file' = '" + file.string() +
                                   "' holds a sample made with other settings than this input's (" + list +
                                   "); remove the file to make a new sample there, or name another file");
@@ -323,7 +324,18 @@ int run_biaxial_command(const std::string &input_file, bool resume)
   parse_input_file(prm, input_file);
   const std::string where = "input file '" + input_file + "'";
   const BiaxialCampaign campaign = parse_biaxial_campaign(prm, where);
-  read_campaign_sample(campaign); // a sample file that cannot serve stops the run before any output
+  try // a sample file that cannot serve stops the run before any output
+    {
+      read_campaign_sample(campaign);
+    }
+  catch (const std::invalid_argument &e)
+    {
+      throw std::invalid_argument(where + ": " + e.what());
+    }
+  catch (const std::runtime_error &e)
+    {
+      throw std::runtime_error(where + ": " + e.what());
+    }
 
   const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
   write_resolved_parameters(prm, out);

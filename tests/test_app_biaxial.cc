@@ -119,6 +119,7 @@ TEST(BiaxialCommand, SampleFileIsMadeOnceAndReused)
   fs::remove(d / "out" / "summary.json");
   const std::string message =
     error_of(write_input(d, "subsection Sample\n  set seed = 2\n  set sample file = " + sample.string() + "\nend\n"));
+  EXPECT_NE(message.find("input file"), std::string::npos) << message;
   EXPECT_NE(message.find("sample file"), std::string::npos) << message;
   EXPECT_NE(message.find(sample.string()), std::string::npos) << message;
   EXPECT_NE(message.find("seed: 1 stored, 2 wanted"), std::string::npos) << message;
