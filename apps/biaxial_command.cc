@@ -127,7 +127,6 @@ BiaxialCampaign parse_biaxial_campaign(ParameterHandler &prm, const std::string 
     c.confining_stresses.push_back(dealii::Utilities::string_to_double(item));
   if (c.confining_stresses.empty())
     throw std::invalid_argument(where + ": 'Test/confining stresses' is empty; give at least one stress in Pa");
-  c.sample.target_stress = *std::min_element(c.confining_stresses.begin(), c.confining_stresses.end());
   const std::string speed = prm.get("top wall speed");
   if (speed != "auto")
     {
@@ -163,6 +162,14 @@ double seconds_since(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// What the campaign's sample is made from: REDF at the lowest confining stress.
+dem::RedfSpec sample_spec(const BiaxialCampaign &campaign)
+{
+  dem::RedfSpec spec = campaign.sample;
+  spec.target_stress = *std::min_element(campaign.confining_stresses.begin(), campaign.confining_stresses.end());
+  return spec;
+}
+
 /// The sample held by the campaign's sample file, if there is one. Throws, naming the parameter
 /// and the file, if the file cannot be read or holds a sample made with other settings: its tests
 /// would not be those of this input.
@@ -171,6 +178,8 @@ std::optional<dem::StoredSample> read_campaign_sample(const BiaxialCampaign &cam
   const std::filesystem::path &file = campaign.sample_file;
   if (file.empty() || !std::filesystem::exists(file))
     return std::nullopt;
+  if (campaign.confining_stresses.empty())
+    throw std::invalid_argument("biaxial campaign: no confining stress");
   std::optional<dem::StoredSample> stored;
   try
     {
@@ -180,7 +189,7 @@ std::optional<dem::StoredSample> read_campaign_sample(const BiaxialCampaign &cam
     {
       throw std::runtime_error(std::string("'Sample/sample file': ") + e.what());
     }
-  const std::vector<std::string> differences = dem::sample_spec_differences(stored->spec, campaign.sample);
+  const std::vector<std::string> differences = dem::sample_spec_differences(stored->spec, sample_spec(campaign));
   if (!differences.empty())
     {
       std::string list;
@@ -198,7 +207,7 @@ std::optional<dem::StoredSample> read_campaign_sample(const BiaxialCampaign &cam
 /// written to the sample file if one is named).
 dem::StoredSample campaign_sample(const BiaxialCampaign &campaign, bool show_progress)
 {
-  const dem::RedfSpec &spec = campaign.sample;
+  const dem::RedfSpec spec = sample_spec(campaign);
   const std::filesystem::path &file = campaign.sample_file;
   if (std::optional<dem::StoredSample> stored = read_campaign_sample(campaign))
     {

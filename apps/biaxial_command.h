@@ -18,7 +18,7 @@ int run_biaxial_command(const std::string &input_file, bool resume);
 /// What a biaxial campaign needs, read from the parameters (shared with `calibrate`).
 struct BiaxialCampaign
 {
-  dem::RedfSpec sample;                ///< target_stress is set to the lowest confining stress
+  dem::RedfSpec sample;                ///< target_stress: the campaign uses the lowest confining stress
   dem::BiaxialSpec test;               ///< confining_stress is set per confinement
   std::vector<double> confining_stresses;
   /// The REDF sample's file: read if it exists (it must hold the sample `sample` describes),
