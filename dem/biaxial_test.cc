@@ -6,9 +6,34 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 namespace geohybrid::dem
 {
+std::uint64_t consolidate_isotropically(DemSystem &system, const RectangularBox &box, const ConsolidationSpec &spec)
+{
+  if (!(spec.stress > 0.0))
+    throw std::invalid_argument("consolidation: the stress must be positive");
+  box.servo_sides(system, spec.stress, true, spec.stress, true, spec.servo_max_speed);
+  constexpr std::uint64_t check_every = 200;
+  for (std::uint64_t steps = 0;; ++steps)
+    {
+      if (steps % check_every == 0)
+        {
+          const double stress_error = std::max(std::abs(box.horizontal_stress(system) / spec.stress - 1.0),
+                                               std::abs(box.vertical_stress(system) / spec.stress - 1.0));
+          if (stress_error < spec.stress_tolerance && unbalanced_force_ratio(system) < spec.unbalanced_ratio)
+            return steps;
+          if (steps >= spec.max_steps)
+            throw std::runtime_error("consolidation to " + std::to_string(spec.stress) + " Pa: no equilibrium after " +
+                                     std::to_string(steps) + " steps (stress error " + std::to_string(stress_error) +
+                                     ")");
+        }
+      box.update_loaded_lengths(system);
+      system.step();
+    }
+}
+
 BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, const BiaxialSpec &spec,
                               double mean_diameter, double density, const std::function<void(double)> &progress)
 {
@@ -18,6 +43,15 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
     throw std::invalid_argument("biaxial test: the final axial strain must lie in (0, 0.5)");
   if (spec.top_wall_speed < 0.0 || (spec.top_wall_speed == 0.0 && !(spec.target_inertial_number > 0.0)))
     throw std::invalid_argument("biaxial test: the top wall speed must be positive (or set an inertial number)");
+  if (!(spec.ramp_strain >= 0.0 && spec.ramp_strain < spec.final_axial_strain))
+    throw std::invalid_argument("biaxial test: the speed ramp's strain must lie in [0, final axial strain)");
+
+  ConsolidationSpec consolidation;
+  consolidation.stress = spec.confining_stress;
+  consolidation.stress_tolerance = spec.consolidation_stress_tolerance;
+  consolidation.unbalanced_ratio = spec.consolidation_unbalanced_ratio;
+  consolidation.servo_max_speed = spec.servo_max_speed;
+  const std::uint64_t consolidation_steps = consolidate_isotropically(system, box, consolidation);
 
   const double H0 = box.height(system), W0 = box.width(system);
   // Inertial number I = (V / H) d sqrt(rho / sigma_0): below ~1e-3 the test is quasi-static.
@@ -29,6 +63,7 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
   curve.top_wall_speed = speed;
   curve.inertial_number = speed / H0 * mean_diameter * std::sqrt(density / spec.confining_stress);
   curve.initial_porosity = 1.0 - total_solid_area(system.particles()) / (H0 * W0);
+  curve.consolidation_steps = consolidation_steps;
 
   std::vector<Wall> &walls = system.walls();
   // The lateral walls must be able to follow the sample's dilation: allow them ten times V.
@@ -36,7 +71,11 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
   walls[box.bottom].control = WallControl::prescribed_velocity;
   walls[box.bottom].velocity = Vec2::Zero();
   walls[box.top].control = WallControl::prescribed_velocity;
-  walls[box.top].velocity = Vec2(0.0, -speed);
+  // The top wall accelerates uniformly from rest to V over the first ramp_strain of axial strain:
+  // started at V at once, it would send a stress wave through the sample (a jump of about
+  // rho c V, some 10 kPa at V = 9 cm/s) that spoils the first points, where the modulus is read.
+  const double ramp_time = spec.ramp_strain > 0.0 ? 2.0 * spec.ramp_strain * H0 / speed : 0.0;
+  const double dt = system.time_step();
 
   // Stresses are averaged over each recording interval, as a load cell would: the force on a
   // wall touched by a few dozen grains fluctuates from step to step.
@@ -58,8 +97,11 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
   double next_record = spec.record_interval;
   for (;;)
     {
+      const double elapsed = dt * static_cast<double>(curve.compression_steps);
+      walls[box.top].velocity = Vec2(0.0, -speed * (elapsed < ramp_time ? elapsed / ramp_time : 1.0));
       box.update_loaded_lengths(system);
       system.step();
+      ++curve.compression_steps;
       sum_axial += box.vertical_stress(system);
       sum_lateral += box.horizontal_stress(system);
       ++n_summed;

@@ -7,11 +7,29 @@
 #include "box.h"
 #include "dem_system.h"
 
+#include <cstdint>
 #include <functional>
 #include <vector>
 
 namespace geohybrid::dem
 {
+/// Isotropic consolidation: the four walls servo-controlled to one stress until equilibrium.
+struct ConsolidationSpec
+{
+  double stress = 10e3;             ///< [Pa]
+  double stress_tolerance = 0.02;   ///< accepted relative error of each wall pair's stress [-]
+  double unbalanced_ratio = 1e-3;   ///< accepted unbalanced-force ratio [-]
+  double servo_max_speed = 0.05;    ///< cap on the walls' speed [m/s]
+  std::uint64_t max_steps = 2'000'000;
+};
+
+/// Consolidates the sample held by `system` in `box` to spec.stress, isotropically: the four
+/// walls are servo-controlled to it until both wall pairs' stresses are within the tolerance and
+/// the unbalanced-force ratio is below its limit, checked every 200 steps. A sample already there
+/// (made by REDF at that stress) takes no step. Returns the number of steps; throws
+/// std::runtime_error after spec.max_steps.
+std::uint64_t consolidate_isotropically(DemSystem &system, const RectangularBox &box, const ConsolidationSpec &spec);
+
 struct BiaxialSpec
 {
   double confining_stress = 10e3;   ///< sigma_0 on the lateral walls [Pa]
@@ -20,6 +38,11 @@ struct BiaxialSpec
   double final_axial_strain = 0.10; ///< [-]
   double record_interval = 1e-3;    ///< axial strain between recorded points [-]
   double servo_max_speed = 0.05;    ///< cap on the lateral walls' speed [m/s]
+  double ramp_strain = 0.005;       ///< the top wall reaches V after this axial strain [-]
+  /// Before shearing, the sample is consolidated to sigma_0 (consolidate_isotropically) with
+  /// these tolerances: a sample made at one stress serves tests at others.
+  double consolidation_stress_tolerance = 0.02;  ///< [-]
+  double consolidation_unbalanced_ratio = 1e-3;  ///< [-]
 };
 
 struct BiaxialPoint
@@ -38,12 +61,15 @@ struct BiaxialCurve
   double initial_porosity = 0.0;
   double top_wall_speed = 0.0;
   double inertial_number = 0.0; ///< I = strain rate x mean diameter x sqrt(density / sigma_0)
+  std::uint64_t consolidation_steps = 0;
+  std::uint64_t compression_steps = 0;
   std::vector<BiaxialPoint> points;
 };
 
-/// Shears the sample held by `system` in `box` (its walls are reused: lateral walls become
-/// servo-controlled, the bottom wall fixed, the top wall driven down). `mean_diameter` and
-/// `density` give the inertial number.
+/// Consolidates the sample held by `system` in `box` to sigma_0, then shears it (its walls are
+/// reused: lateral walls servo-controlled, the bottom wall fixed, the top wall driven down).
+/// `mean_diameter` and `density` give the inertial number. Strains are measured from the
+/// consolidated state, and initial_porosity is that state's.
 BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, const BiaxialSpec &spec,
                               double mean_diameter, double density,
                               const std::function<void(double)> &progress = {});

