@@ -14,7 +14,7 @@
 //                  [--shuffle] [--sort]   (--sort: renumber in Morton order, dem::spatially_sorted)
 //       Loads the settled packing (velocities zero, no contact history), and times `steps` steps
 //       (after one untimed step that builds the lists and the initial forces) with gravity, no
-//       local damping and no dashpot (restitution 1), dt = 0.5 x critical_time_step().
+//       local damping and no dashpot (restitution 1), dt = 0.5 sqrt(m_min / kn) (0.866 x critical_time_step()).
 //   dem_bench lammps --packing FILE --dir DIR [--steps 2000]
 //       Writes DIR/packing.data and DIR/in.bench: the same packing, law, walls, time step and
 //       number of steps for LAMMPS (pair gran/hooke/history, fix wall/gran, nve/sphere disc).
@@ -54,7 +54,9 @@ constexpr double wall_height = 3.0;     // side walls reach well above the packi
 constexpr double kn          = 7.0e7;   // [N/m/m]
 constexpr double friction_deg = 10.0;
 constexpr double gravity     = 9.81;
-constexpr double dt_safety   = 0.5;     // dt = 0.5 x DemSystem::critical_time_step()
+// dt = 0.5 sqrt(m_min / kn), the step of every measurement in bench/RESULTS.md: the critical step
+// of discs with ks = kn / 2 is sqrt(m / kn) / sqrt(3) (a dense-packing bound), so 0.866 of it.
+constexpr double dt_safety   = 0.5 * 1.7320508075688772;
 constexpr int packing_version = 2;      // bump when the deposition procedure changes
 
 using Clock = std::chrono::steady_clock;
