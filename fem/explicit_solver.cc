@@ -112,6 +112,26 @@ void ExplicitSolver::set_initial_velocity(const dealii::Function<dim> &velocity)
     velocity_.local_element(i) = constrained_[i] ? 0.0 : interpolated[owned.nth_index_in_set(i)];
 }
 
+void ExplicitSolver::attach_sheet(const TrussSheet &sheet, std::vector<SheetClamp> clamps)
+{
+  auto embedded = std::make_unique<EmbeddedSheet>(space_, sheet, std::move(clamps), "explicit solver: sheet");
+  const double sheet_step = embedded->stable_time_step();
+  if (sheet_step < time_step_)
+    {
+      // omega scales as 1/sqrt(m): the mass must grow by (dt / dt_sheet)^2.
+      const double needed = sheet.parameters().mass_scaling * std::pow(time_step_ / sheet_step, 2);
+      std::ostringstream message;
+      message << "explicit solver: sheet: parameter 'mass scaling' = " << sheet.parameters().mass_scaling
+              << " leaves the sheet's nodes stable only below " << sheet_step << " s, less than the time step "
+              << time_step_ << " s; a mass scaling of at least " << needed
+              << " is needed (the sheet's inertia is irrelevant in a quasi-static pull)";
+      throw std::invalid_argument(message.str());
+    }
+  sheet_ = std::move(embedded);
+  increment_ = 0.0;
+  assemble_internal_force(increment_);
+}
+
 std::map<dealii::types::global_dof_index, double> ExplicitSolver::prescribed_displacements(double time) const
 {
   // The first condition that names a DoF wins, as in the implicit solver's constraints.
@@ -250,6 +270,8 @@ void ExplicitSolver::assemble_internal_force(const Vector &displacement_incremen
         cell->get_dof_indices(dof_indices);
         internal_force_.add(dof_indices, cell_internal);
       }
+  if (sheet_)
+    sheet_->compute_forces(displacement_, material_points_, internal_force_);
   internal_force_.compress(dealii::VectorOperation::add);
 }
 
@@ -343,6 +365,8 @@ void ExplicitSolver::take_step(double dt)
       const unsigned int i = owned.index_within_set(entry.first);
       velocity_.local_element(i) = (entry.second - displacement_.local_element(i)) / dt;
     }
+  if (sheet_)
+    sheet_->advance(dt, previous_step_, alpha, alpha_local, new_time);
   for (unsigned int i = 0; i < velocity_.locally_owned_size(); ++i)
     {
       increment_.local_element(i) = dt * velocity_.local_element(i);

@@ -25,11 +25,13 @@
 #include "fem/displacement_space.h"
 #include "fem/geostatic_stress.h"
 #include "fem/material_point_history.h"
+#include "fem/sheet_interface.h"
 
 #include <deal.II/lac/la_parallel_vector.h>
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,6 +73,13 @@ public:
   void set_initial_stress(const GeostaticStress &geostatic);
   /// Sets the velocity v(x) (2 components [m/s]) at the nodes, at time(). Collective.
   void set_initial_velocity(const dealii::Function<dim> &velocity);
+
+  /// Lays a truss sheet in the soil, tied by its interface (sheet_interface.h), with `clamps`
+  /// holding nodes at prescribed displacements. Throws std::invalid_argument naming 'mass scaling'
+  /// and the factor needed if the sheet's nodes would be unstable at time_step(), or if a node
+  /// lies outside the mesh. Collective.
+  void attach_sheet(const TrussSheet &sheet, std::vector<SheetClamp> clamps);
+  const EmbeddedSheet *sheet() const { return sheet_.get(); } ///< nullptr without a sheet
 
   /// One step of time_step(). Collective.
   void step();
@@ -132,6 +141,6 @@ private:
   double time_ = 0.0;
   double previous_step_ = 0.0; ///< dt_{n-1/2}, 0 before the first step
   unsigned int n_steps_ = 0;
-  double out_of_balance_ = 0.0, force_scale_ = 0.0;
+  std::unique_ptr<EmbeddedSheet> sheet_;
 };
 } // namespace geohybrid::fem
