@@ -32,7 +32,10 @@ EmbeddedSheet::EmbeddedSheet(const DisplacementSpace &space, const TrussSheet &s
   committed_gap_.assign(n, Force());
   shear_stress_.assign(n, 0.0);
 
-  // Each node belongs to the lowest rank that finds it in one of its own cells.
+  // A node on a cell edge or vertex touches several cells, and the soil stress (sigma_nn) is that
+  // of one of them: the one with the smallest CellId, whatever the partition, so that the result
+  // does not depend on the number of ranks. A rank that owns one of those cells also sees all the
+  // others (owned or ghost), so every such rank picks the same cell; its owner takes the node.
   const MPI_Comm comm = space_.communicator();
   const unsigned int rank = dealii::Utilities::MPI::this_mpi_process(comm);
   const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
@@ -42,20 +45,30 @@ EmbeddedSheet::EmbeddedSheet(const DisplacementSpace &space, const TrussSheet &s
   std::vector<dealii::Point<dim>> reference_points(n);
   for (std::size_t k = 0; k < n; ++k)
     {
+      std::vector<std::pair<dealii::DoFHandler<dim>::active_cell_iterator, dealii::Point<dim>>> around;
       try
         {
-          const auto found =
-            dealii::GridTools::find_active_cell_around_point(space_.mapping(), space_.dof_handler(), sheet_.node(k));
-          if (found.first.state() == dealii::IteratorState::valid && found.first->is_locally_owned())
-            {
-              owner[k] = rank;
-              soil_points_[k].cell = found.first;
-              reference_points[k] = dealii::GeometryInfo<dim>::project_to_unit_cell(found.second);
-            }
+          around = dealii::GridTools::find_all_active_cells_around_point(space_.mapping(), space_.dof_handler(),
+                                                                          sheet_.node(k), 1e-10);
         }
       catch (...)
         {
           // Not in a cell this rank knows: another rank's node, or outside the mesh.
+        }
+      bool touches_own_cell = false;
+      for (const auto &c : around)
+        touches_own_cell = touches_own_cell || c.first->is_locally_owned();
+      if (!touches_own_cell)
+        continue;
+      const std::pair<dealii::DoFHandler<dim>::active_cell_iterator, dealii::Point<dim>> *chosen = nullptr;
+      for (const auto &c : around)
+        if (!c.first->is_artificial() && (chosen == nullptr || c.first->id() < chosen->first->id()))
+          chosen = &c;
+      if (chosen->first->is_locally_owned())
+        {
+          owner[k] = rank;
+          soil_points_[k].cell = chosen->first;
+          reference_points[k] = dealii::GeometryInfo<dim>::project_to_unit_cell(chosen->second);
         }
     }
   dealii::Utilities::MPI::min(owner, comm, owner);

@@ -3,7 +3,7 @@
 // its two faces, for the explicit solver (forces only).
 //
 // Each sheet node k stands for a length L_k of sheet (truss_sheet.h). It sits at the reference
-// point X_k inside a soil cell (found once with GridTools::find_active_cell_around_point; the
+// point X_k inside a soil cell (found once with GridTools::find_all_active_cells_around_point; the
 // soil's shape functions N_i(X_k) are stored), and its relative displacement to the soil there,
 // g = u_k - sum_i N_i u_i, is split along the sheet's unit tangent t and normal n:
 // - normal: a penalty spring per face, F_n = -2 k_n (g.n) L_k n, ties the sheet to the soil
@@ -17,7 +17,7 @@
 // uniform sigma_v holds T_max = 2 (c_i + sigma_v tan(delta)) L.
 //
 // The sheet is replicated on every MPI rank (hundreds of nodes): the rank that owns the cell of
-// node k (the lowest such rank for a node on a partition boundary) computes its interface force,
+// node k (for a node on cell edges, the cell with the smallest CellId) computes its interface force,
 // one MPI sum per step shares them, and every rank then integrates the sheet's nodes identically.
 #include "fem/displacement_space.h"
 #include "fem/material_point_history.h"
