@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <iomanip>
 #include <iostream>
 
 using namespace geohybrid::fem;
@@ -111,6 +112,45 @@ TEST(ExplicitSolver, BarVibratesWithThePWaveSpeed)
                 << " s (h/c = " << 0.01 / c << " s), " << bar.n_steps << " steps" << std::endl;
       EXPECT_NEAR(measured_speed, c, 0.01 * c);
     }
+}
+
+// Mass-proportional damping alpha on the same bar: the free end's amplitude decays as
+// exp(-alpha t / 2), here measured between two maxima one damped period apart.
+TEST(ExplicitSolver, MassProportionalDampingDecaysAsExpMinusAlphaTOverTwo)
+{
+  const double E = 10e6, rho = 2000.0, L = 1.0, alpha = 20.0;
+  Mesh mesh(MPI_COMM_WORLD);
+  make_rectangle(mesh, 100, 1, Point<dim>(0, 0), Point<dim>(L, 0.01));
+  BoundaryConditions bc;
+  bc.displacements = {{left, true, true, nullptr}, {bottom, false, true, nullptr}, {top, false, true, nullptr}};
+  ExplicitSettings settings;
+  settings.density = rho;
+  settings.damping.mass_proportional = alpha;
+  ExplicitSolver solver(mesh, elastic_soil(E, 0.0), bc, settings);
+  solver.set_initial_velocity(FirstModeVelocity(0.01, L));
+  const dealii::IndexSet end_x_dofs = dealii::DoFTools::extract_boundary_dofs(
+    solver.space().dof_handler(), dealii::ComponentMask(std::vector<bool>{true, false}), {right});
+  // Maxima of u(L, t), refined by a parabola through the three samples around each.
+  std::vector<std::pair<double, double>> maxima; // (time, value)
+  double u_2 = 0.0, u_1 = mean_x_displacement(solver, end_x_dofs);
+  const double period = 4.0 * L / std::sqrt(E / rho);
+  while (solver.time() < 2.2 * period)
+    {
+      solver.step();
+      const double u = mean_x_displacement(solver, end_x_dofs), dt = solver.time_step();
+      if (solver.n_steps() > 2 && u_1 > u_2 && u_1 >= u)
+        {
+          const double curvature = u - 2 * u_1 + u_2, slope = 0.5 * (u - u_2);
+          maxima.emplace_back(solver.time() - dt - dt * slope / curvature, u_1 - 0.5 * slope * slope / curvature);
+        }
+      u_2 = u_1;
+      u_1 = u;
+    }
+  ASSERT_GE(maxima.size(), 2u);
+  const double measured = -2.0 * std::log(maxima[1].second / maxima[0].second) / (maxima[1].first - maxima[0].first);
+  std::cout << std::setprecision(8) << "mass-proportional damping: decay rate " << measured << " 1/s against alpha = " << alpha << " 1/s"
+            << std::endl;
+  EXPECT_NEAR(measured, alpha, 0.01 * alpha);
 }
 
 // The stable step of the Q1 bar is the 1D bound h / c times the safety factor when the cells are
