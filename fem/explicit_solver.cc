@@ -68,6 +68,7 @@ ExplicitSolver::ExplicitSolver(const dealii::parallel::distributed::Triangulatio
     constrained_[owned.index_within_set(entry.first)] = true;
 
   assemble_mass_and_body_force();
+  build_cell_cache();
   critical_time_step_ = compute_critical_time_step();
   if (settings_.time_step > stable_time_step())
     {
@@ -235,41 +236,78 @@ double ExplicitSolver::compute_critical_time_step() const
   return 2.0 / std::sqrt(largest_omega_squared);
 }
 
-void ExplicitSolver::assemble_internal_force(const Vector &displacement_increment)
+void ExplicitSolver::build_cell_cache()
 {
-  internal_force_ = 0.0;
   const auto &fe = space_.fe();
+  const unsigned int n_dofs = fe.n_dofs_per_cell(), n_q = space_.cell_quadrature().size();
+  const unsigned int n_scalar = fe.base_element(0).n_dofs_per_cell();
+  dof_component_.resize(n_dofs);
+  dof_scalar_.resize(n_dofs);
+  for (unsigned int i = 0; i < n_dofs; ++i)
+    {
+      dof_component_[i] = fe.system_to_component_index(i).first;
+      dof_scalar_[i] = fe.system_to_component_index(i).second;
+    }
   dealii::FEValues<dim> fe_values(space_.mapping(), fe, space_.cell_quadrature(),
                                   dealii::update_gradients | dealii::update_JxW_values);
-  const dealii::FEValuesExtractors::Vector u(0);
-  const unsigned int n_dofs = fe.n_dofs_per_cell(), n_q = space_.cell_quadrature().size();
-  dealii::Vector<double> cell_internal(n_dofs);
+  const auto &partitioner = *displacement_.get_partitioner();
   std::vector<dealii::types::global_dof_index> dof_indices(n_dofs);
-  std::vector<StrainTensor> strain_increments(n_q);
+  cells_.clear();
   for (const auto &cell : space_.dof_handler().active_cell_iterators())
     if (cell->is_locally_owned())
       {
         fe_values.reinit(cell);
-        cell_internal = 0.0;
-        fe_values[u].get_function_symmetric_gradients(displacement_increment, strain_increments);
-        auto points = material_points_.at(cell);
+        CellCache c;
+        cell->get_dof_indices(dof_indices);
+        for (const auto g : dof_indices)
+          c.local_dofs.push_back(partitioner.global_to_local(g));
+        for (const auto &p : material_points_.at(cell))
+          c.points.push_back(p.get());
+        c.gradients.resize(n_q * n_scalar);
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            // Explicit: every step is committed, so the update starts from the last step's stress.
-            MaterialPoint &point = *points[q];
-            const StressUpdate update = soil_.update(point.stress, strain_increments[q]);
-            point.stress = point.trial_stress = update.stress;
-            point.plastic_strain += update.plastic_strain_increment;
-            point.trial_plastic_strain = point.plastic_strain;
-            point.region = point.trial_region = update.region;
-            const auto in_plane_stress = in_plane_part(update.stress);
-            const double JxW = fe_values.JxW(q);
+            c.JxW.push_back(fe_values.JxW(q));
             for (unsigned int i = 0; i < n_dofs; ++i)
-              cell_internal(i) += (in_plane_stress * fe_values[u].symmetric_gradient(i, q)) * JxW;
+              c.gradients[q * n_scalar + dof_scalar_[i]] = fe_values.shape_grad_component(i, q, dof_component_[i]);
           }
-        cell->get_dof_indices(dof_indices);
-        internal_force_.add(dof_indices, cell_internal);
+        cells_.push_back(std::move(c));
       }
+}
+
+void ExplicitSolver::assemble_internal_force(const Vector &displacement_increment)
+{
+  internal_force_ = 0.0;
+  const unsigned int n_dofs = dof_component_.size();
+  const unsigned int n_scalar = space_.fe().base_element(0).n_dofs_per_cell();
+  std::vector<double> increment(n_dofs);
+  std::vector<dealii::Tensor<1, dim>> cell_force(n_scalar); // per scalar shape, both components
+  for (const CellCache &c : cells_)
+    {
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        increment[i] = displacement_increment.local_element(c.local_dofs[i]);
+      std::fill(cell_force.begin(), cell_force.end(), dealii::Tensor<1, dim>());
+      for (unsigned int q = 0; q < c.points.size(); ++q)
+        {
+          const dealii::Tensor<1, dim> *gradients = &c.gradients[q * n_scalar];
+          dealii::Tensor<2, dim> displacement_gradient;
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            for (unsigned int d = 0; d < dim; ++d)
+              displacement_gradient[dof_component_[i]][d] += increment[i] * gradients[dof_scalar_[i]][d];
+          // Explicit: every step is committed, so the update starts from the last step's stress.
+          MaterialPoint &point = *c.points[q];
+          const StressUpdate update = soil_.update(point.stress, dealii::symmetrize(displacement_gradient));
+          point.stress = point.trial_stress = update.stress;
+          point.plastic_strain += update.plastic_strain_increment;
+          point.trial_plastic_strain = point.plastic_strain;
+          point.region = point.trial_region = update.region;
+          // f_i = int sigma : sym(e_c x grad phi_j) = int (sigma grad phi_j)_c.
+          const dealii::SymmetricTensor<2, dim> in_plane_stress = in_plane_part(update.stress);
+          for (unsigned int j = 0; j < n_scalar; ++j)
+            cell_force[j] += (in_plane_stress * gradients[j]) * c.JxW[q];
+        }
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        internal_force_.local_element(c.local_dofs[i]) += cell_force[dof_scalar_[i]][dof_component_[i]];
+    }
   if (sheet_)
     sheet_->compute_forces(displacement_, material_points_, internal_force_);
   internal_force_.compress(dealii::VectorOperation::add);

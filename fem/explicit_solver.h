@@ -112,6 +112,17 @@ public:
   std::string write_vtu(const std::string &directory, const std::string &basename, unsigned int step);
 
 private:
+  /// What a step needs of each locally owned cell, computed once (the mesh does not move in small
+  /// strain): per quadrature point JxW and the gradients of the scalar shape functions, the cell's
+  /// DoFs as local indices of the ghosted vectors, and its material points.
+  struct CellCache
+  {
+    std::vector<unsigned int> local_dofs;          ///< per cell DoF
+    std::vector<MaterialPoint *> points;           ///< per quadrature point
+    std::vector<double> JxW;                       ///< per quadrature point
+    std::vector<dealii::Tensor<1, dim>> gradients; ///< [q * n_scalar + j]
+  };
+  void build_cell_cache();
   double compute_critical_time_step() const;
   void assemble_mass_and_body_force();
   /// f_int from the displacement increment du (ghosted), updating and committing the points.
@@ -142,5 +153,7 @@ private:
   double previous_step_ = 0.0; ///< dt_{n-1/2}, 0 before the first step
   unsigned int n_steps_ = 0;
   std::unique_ptr<EmbeddedSheet> sheet_;
+  std::vector<CellCache> cells_;
+  std::vector<unsigned int> dof_component_, dof_scalar_; ///< of each cell DoF: its component and scalar shape
 };
 } // namespace geohybrid::fem
