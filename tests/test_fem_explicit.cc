@@ -2,6 +2,7 @@
 // implicit solver reached by a damped explicit run, the stable step and the refusal of a larger
 // one, and bad input.
 #include "fem/explicit_solver.h"
+#include "temporary_directory.h"
 #include "test_fem_support.h"
 
 #include <deal.II/base/function_lib.h>
@@ -11,7 +12,9 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <iomanip>
+#include <sstream>
 #include <iostream>
 
 using namespace geohybrid::fem;
@@ -270,4 +273,30 @@ TEST(ExplicitSolver, DampedRunReachesTheImplicitStaticSolution)
       EXPECT_LT(difference, 1e-6 * largest);
       EXPECT_NEAR(reaction_explicit[1], reaction_implicit[1], 1e-6 * std::abs(reaction_implicit[1]));
     }
+}
+
+// The explicit solver writes its state for ParaView: a PVTU record and this rank's piece, with the
+// displacement and the stresses (the values are base64 data; write_soil_vtu is shared with the
+// implicit solver).
+TEST(ExplicitSolver, WritesTheDisplacementToVtu)
+{
+  geohybrid::testing::TemporaryDirectory directory("fem_explicit_vtu");
+  const Layer layer;
+  Mesh mesh(MPI_COMM_WORLD);
+  make_rectangle(mesh, 8, 4, Point<dim>(0, 0), Point<dim>(layer.width, layer.height));
+  ExplicitSettings settings;
+  settings.density = layer.density;
+  settings.gravity = QuasiStaticSettings::gravity_down();
+  settings.damping.local = 0.7;
+  ExplicitSolver solver(mesh, elastic_soil(layer.E, layer.nu), layer.supports(), settings);
+  for (unsigned int i = 0; i < 50; ++i)
+    solver.step();
+  const std::string record = solver.write_vtu(directory.path.string(), "layer", 3);
+  EXPECT_EQ(record, "layer_0003.pvtu");
+  std::ifstream vtu(directory.path / "layer_0003.0.vtu");
+  ASSERT_TRUE(vtu.good());
+  std::stringstream text;
+  text << vtu.rdbuf();
+  EXPECT_NE(text.str().find("Name=\"displacement\""), std::string::npos);
+  EXPECT_NE(text.str().find("Name=\"sigma_yy\""), std::string::npos);
 }
