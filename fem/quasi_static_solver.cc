@@ -2,6 +2,7 @@
 
 #include "fem/constitutive/parameter_check.h"
 #include "fem/constitutive/plane_strain_tensors.h"
+#include "fem/initial_stress.h"
 #include "fem/vtu_output.h"
 
 #include <deal.II/base/mpi.h>
@@ -78,35 +79,7 @@ QuasiStaticSolver::QuasiStaticSolver(const dealii::parallel::distributed::Triang
 void QuasiStaticSolver::set_initial_stress(const std::function<StressTensor(const dealii::Point<dim> &)> &stress,
                                            const std::string &description)
 {
-  dealii::FEValues<dim> fe_values(space_.mapping(), space_.fe(), space_.cell_quadrature(),
-                                  dealii::update_quadrature_points);
-  std::string violation;
-  for (const auto &cell : space_.dof_handler().active_cell_iterators())
-    if (cell->is_locally_owned())
-      {
-        fe_values.reinit(cell);
-        auto points = material_points_.at(cell);
-        for (unsigned int q = 0; q < points.size(); ++q)
-          {
-            const auto &x = fe_values.quadrature_point(q);
-            const StressTensor sigma = stress(x);
-            const double f = soil_.yield_function(sigma);
-            if (violation.empty() && f > 1e-9 * (sigma.norm() + 1.0))
-              {
-                std::ostringstream message;
-                message << description << " lies outside the soil's yield surface at (" << x[0] << ", " << x[1]
-                        << ") m: sigma_xx = " << sigma[0][0] << ", sigma_yy = " << sigma[1][1]
-                        << ", sigma_zz = " << sigma[2][2] << " Pa, yield function " << f
-                        << " Pa > 0 (for a geostatic state, K0 is too far from 1)";
-                violation = message.str();
-              }
-            points[q]->stress = points[q]->trial_stress = sigma;
-          }
-      }
-  // Every rank must throw, or the others would wait for it in the next collective call.
-  if (dealii::Utilities::MPI::max(violation.empty() ? 0 : 1, space_.communicator()) > 0)
-    throw std::invalid_argument(violation.empty() ? description + " lies outside the soil's yield surface on another MPI rank"
-                                                  : violation);
+  set_material_point_stress(space_, soil_, material_points_, stress, description);
 }
 
 void QuasiStaticSolver::set_initial_stress(const GeostaticStress &geostatic)

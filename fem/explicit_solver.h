@@ -1,0 +1,159 @@
+#pragma once
+// The explicit dynamic solver of the soil: M a = f_ext(t) - f_int(u) - f_damping, integrated with
+// central differences (velocities at half steps) on a lumped (row-sum) mass, so that a step costs
+// one pass over the cells (strain increment, SoilModel::update, internal force) and a few vector
+// operations, and never a global matrix. This is the solver the DEM coupling runs in lockstep with.
+//
+// Damping, for quasi-static runs (both may be combined, both default to none):
+// - mass-proportional (Rayleigh alpha): f_d = alpha M v, which damps low frequencies most;
+// - local non-viscous damping as in PFC/FLAC (Cundall 1987): f_d,i = alpha_l |f_i| sign(v_i) per
+//   DoF, a force against the motion proportional to the out-of-balance force, which needs no
+//   frequency and vanishes at equilibrium.
+//
+// The stable step comes from the mesh: the largest eigenfrequency of the lumped system is bounded
+// by the largest element eigenfrequency omega_e (Irons' element eigenvalue theorem) of the elastic
+// stiffness, so dt_crit = 2 / max_e omega_e. For a 1D-like bar of Q1 cells this is h / c_p
+// (the cell size over the P-wave speed); in 2D and for Q2 it is the exact, smaller, bound. The step
+// used is a safety factor times dt_crit, and a user step above that is refused. Plastic flow only
+// softens the stiffness, so the elastic bound stays safe.
+//
+// Every step commits the material points (the stress is integrated from the last step's). The
+// state lives in deal.II distributed vectors with ghosts: the solver works on any number of MPI
+// ranks and gives the same numbers (to round-off in the order of summation) on each.
+#include "fem/boundary_conditions.h"
+#include "fem/constitutive/soil_model.h"
+#include "fem/displacement_space.h"
+#include "fem/geostatic_stress.h"
+#include "fem/material_point_history.h"
+#include "fem/sheet_interface.h"
+
+#include <deal.II/lac/la_parallel_vector.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace geohybrid::fem
+{
+struct ExplicitDamping
+{
+  double mass_proportional = 0.0; ///< alpha in f_d = alpha M v, >= 0 [1/s]
+  double local = 0.0;             ///< alpha_l in f_d = alpha_l |f| sign(v), in [0, 1) (PFC's default 0.7) [-]
+};
+
+struct ExplicitSettings
+{
+  unsigned int element_degree = 1; ///< 1 (Q1) or 2 (Q2); Q1 is cheaper per step and per stable step
+  double density = 0.0;            ///< rho, for mass and body force, > 0 [kg/m^3]
+  dealii::Tensor<1, dim> gravity;  ///< g [m/s^2] (zero by default: set (0, -9.81) for self-weight)
+  double safety_factor = 0.8;      ///< the stable step is this times dt_crit, in (0, 1] [-]
+  double time_step = 0.0;          ///< [s]; 0 takes the stable step, a larger one is refused
+  ExplicitDamping damping;
+
+  /// Throws std::invalid_argument naming `where` and the parameter.
+  void validate(const std::string &where) const;
+};
+
+class ExplicitSolver
+{
+public:
+  using Vector = dealii::LinearAlgebra::distributed::Vector<double>;
+
+  /// The mesh must outlive the solver and have no hanging nodes. Throws std::invalid_argument for
+  /// bad settings, boundary conditions naming a boundary id the mesh lacks, or a time step above
+  /// the stable one (the message names 'time step' and the stable value).
+  ExplicitSolver(const dealii::parallel::distributed::Triangulation<dim> &mesh, const SoilModel &soil,
+                 const BoundaryConditions &boundary_conditions, const ExplicitSettings &settings);
+
+  /// Sets the stress at every quadrature point (see set_material_point_stress). Collective.
+  void set_initial_stress(const std::function<StressTensor(const dealii::Point<dim> &)> &stress,
+                          const std::string &description);
+  void set_initial_stress(const GeostaticStress &geostatic);
+  /// Sets the velocity v(x) (2 components [m/s]) at the nodes, at time(). Collective.
+  void set_initial_velocity(const dealii::Function<dim> &velocity);
+
+  /// Lays a truss sheet in the soil, tied by its interface (sheet_interface.h), with `clamps`
+  /// holding nodes at prescribed displacements. Throws std::invalid_argument naming 'mass scaling'
+  /// and the factor needed if the sheet's nodes would be unstable at time_step(), or if a node
+  /// lies outside the mesh. Collective.
+  void attach_sheet(const TrussSheet &sheet, std::vector<SheetClamp> clamps);
+  const EmbeddedSheet *sheet() const { return sheet_.get(); } ///< nullptr without a sheet
+
+  /// One step of time_step(). Collective.
+  void step();
+  /// Steps of at most time_step() until time() == end_time (the last ones evenly shortened).
+  /// Returns the number of steps taken. Collective.
+  unsigned int advance_to(double end_time);
+
+  double time() const { return time_; }
+  unsigned int n_steps() const { return n_steps_; }
+  double time_step() const { return time_step_; }
+  double critical_time_step() const { return critical_time_step_; } ///< 2 / max element omega [s]
+  double stable_time_step() const { return settings_.safety_factor * critical_time_step_; }
+
+  const DisplacementSpace &space() const { return space_; }
+  const Vector &displacement() const { return displacement_; } ///< u at time(), with ghosts [m]
+  const Vector &velocity() const { return velocity_; }         ///< v at time() - dt/2, owned [m/s]
+  const Vector &lumped_mass() const { return mass_; }          ///< per DoF [kg/m]
+  MaterialPointHistory &material_points() { return material_points_; }
+
+  /// Kinetic energy 1/2 v.M v of the half-step velocity [J/m]. Collective.
+  double kinetic_energy() const;
+  /// |f_ext - f_int| over |f_int| + |f_ext| on the free DoFs at the last step (PFC's unbalanced
+  /// force ratio, in the l2 norm): zero at static equilibrium [-]. Collective.
+  double out_of_balance_ratio() const;
+  /// f_int - f_ext summed over the DoFs of `boundary_id` at the last step: the force the supports
+  /// and loads there exert on the soil, inertia of those nodes neglected [N/m]. Collective.
+  dealii::Tensor<1, dim> boundary_reaction(dealii::types::boundary_id boundary_id) const;
+
+  /// VTU piece per rank plus a PVTU record, for ParaView; returns the PVTU file name. Collective.
+  std::string write_vtu(const std::string &directory, const std::string &basename, unsigned int step);
+
+private:
+  /// What a step needs of each locally owned cell, computed once (the mesh does not move in small
+  /// strain): per quadrature point JxW and the gradients of the scalar shape functions, the cell's
+  /// DoFs as local indices of the ghosted vectors, and its material points.
+  struct CellCache
+  {
+    std::vector<unsigned int> local_dofs;          ///< per cell DoF
+    std::vector<MaterialPoint *> points;           ///< per quadrature point
+    std::vector<double> JxW;                       ///< per quadrature point
+    std::vector<dealii::Tensor<1, dim>> gradients; ///< [q * n_scalar + j]
+  };
+  void build_cell_cache();
+  double compute_critical_time_step() const;
+  void assemble_mass_and_body_force();
+  /// f_int from the displacement increment du (ghosted), updating and committing the points.
+  void assemble_internal_force(const Vector &displacement_increment);
+  void assemble_external_force(double time);
+  /// The prescribed displacements at `time`, on the locally owned constrained DoFs.
+  std::map<dealii::types::global_dof_index, double> prescribed_displacements(double time) const;
+  void take_step(double dt);
+
+  SoilModel soil_;
+  BoundaryConditions boundary_conditions_;
+  ExplicitSettings settings_;
+  DisplacementSpace space_;
+  MaterialPointHistory material_points_;
+  std::vector<bool> constrained_;      ///< per locally owned DoF (local index): displacement prescribed
+  std::vector<unsigned int> x_component_; ///< per locally owned DoF: 1 for x, 0 for y
+  double critical_time_step_ = 0.0;
+  double time_step_ = 0.0;
+
+  Vector mass_;               ///< lumped mass, owned
+  Vector body_force_;         ///< rho g, owned
+  Vector external_force_;     ///< f_ext at the last step, owned
+  Vector internal_force_;     ///< f_int at the last step, owned
+  Vector velocity_;           ///< v_{n-1/2}, owned
+  Vector displacement_;       ///< u_n, ghosted
+  Vector increment_;          ///< u_{n+1} - u_n, ghosted
+  double time_ = 0.0;
+  double previous_step_ = 0.0; ///< dt_{n-1/2}, 0 before the first step
+  unsigned int n_steps_ = 0;
+  std::unique_ptr<EmbeddedSheet> sheet_;
+  std::vector<CellCache> cells_;
+  std::vector<unsigned int> dof_component_, dof_scalar_; ///< of each cell DoF: its component and scalar shape
+};
+} // namespace geohybrid::fem

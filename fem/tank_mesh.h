@@ -1,0 +1,37 @@
+#pragma once
+// Reading a tank mesh (meshes/*.msh, gmsh format 2.2 ASCII, quadrilaterals only) into the
+// distributed mesh of the continuum, with the checks a user needs: the file must exist, and the
+// boundary ids that the boundary conditions will name must be on it.
+//
+// The tank meshes of meshes/ tag their walls with gmsh physical lines 1 to 4 (gmsh has no physical
+// tag 0, and a boundary face without a tag would come in with id 0, so id 0 on a tank mesh means a
+// wall was left untagged, and is refused): 1 the bottom, 2 the front wall (x = tank length) that
+// the sheet passes through, 3 the top surface, 4 the back wall (x = 0).
+#include "fem/conventions.h"
+
+#include <deal.II/distributed/tria.h>
+
+#include <string>
+#include <vector>
+
+namespace geohybrid::fem
+{
+namespace tank_boundary
+{
+constexpr dealii::types::boundary_id bottom = 1;     ///< y = 0
+constexpr dealii::types::boundary_id front_wall = 2; ///< x = tank length, where the sheet leaves
+constexpr dealii::types::boundary_id top = 3;        ///< the soil's surface
+constexpr dealii::types::boundary_id back_wall = 4;  ///< x = 0
+} // namespace tank_boundary
+
+/// Reads `file` into the empty `mesh`, then refines it `n_global_refinements` times. Throws
+/// std::invalid_argument naming the file if it is missing or unreadable or has untagged boundary
+/// faces (id 0), and naming the file and the id if one of `required_boundary_ids` is not on the
+/// mesh. Collective.
+void read_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, const std::string &file,
+                    const std::vector<dealii::types::boundary_id> &required_boundary_ids = {tank_boundary::back_wall,
+                                                                                             tank_boundary::front_wall,
+                                                                                             tank_boundary::bottom,
+                                                                                             tank_boundary::top},
+                    unsigned int n_global_refinements = 0);
+} // namespace geohybrid::fem

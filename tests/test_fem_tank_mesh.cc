@@ -1,0 +1,103 @@
+// The tank meshes of meshes/: they load into the distributed mesh with the walls' boundary ids,
+// the tank's area and the sheet's level as a mesh line; the implicit solver carries the soil's
+// weight on them; a missing file and an absent boundary id are refused naming the file.
+#include "fem/quasi_static_solver.h"
+#include "fem/tank_mesh.h"
+#include "test_fem_support.h"
+
+#include <deal.II/grid/grid_tools.h>
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+using namespace geohybrid::fem;
+using namespace geohybrid::fem::testing;
+
+namespace
+{
+const std::string mesh_directory = GEOHYBRID_MESH_DIR;
+
+/// The distinct x of the mesh vertices on the line y = `level`, between x_min and x_max.
+std::set<long> vertices_on_level(const Mesh &mesh, double level, double x_min, double x_max)
+{
+  std::set<long> xs;
+  for (const auto &v : mesh.get_vertices())
+    if (std::abs(v[1] - level) < 1e-9 && v[0] > x_min - 1e-9 && v[0] < x_max + 1e-9)
+      xs.insert(std::lround(v[0] * 1e6));
+  return xs;
+}
+} // namespace
+
+TEST(TankMesh, RunOutTankHasItsWallsAreaAndSheetLevel)
+{
+  Mesh mesh(MPI_COMM_WORLD);
+  read_tank_mesh(mesh, mesh_directory + "/insa_tank_runout.msh");
+  EXPECT_EQ(mesh.n_global_active_cells(), 48u * 24u); // 1.2 m x 0.6 m in 25 mm cells
+  EXPECT_EQ(mesh.get_boundary_ids(), (std::vector<dealii::types::boundary_id>{1, 2, 3, 4}));
+  EXPECT_NEAR(dealii::GridTools::volume(mesh), 1.2 * 0.6, 1e-9); // the .msh keeps ~13 digits
+  // The sheet (y = 0.2 m from x = 0.2 m to the front wall) runs along cell edges: 41 vertices.
+  EXPECT_EQ(vertices_on_level(mesh, 0.2, 0.2, 1.2).size(), 41u);
+}
+
+TEST(TankMesh, WrapAroundTankHasItsWallsAreaAndSheetLines)
+{
+  Mesh mesh(MPI_COMM_WORLD);
+  read_tank_mesh(mesh, mesh_directory + "/insa_tank_wraparound.msh");
+  EXPECT_EQ(mesh.get_boundary_ids(), (std::vector<dealii::types::boundary_id>{1, 2, 3, 4}));
+  EXPECT_NEAR(dealii::GridTools::volume(mesh), 1.2 * 0.6, 1e-9); // the .msh keeps ~13 digits
+  // Lower part y = 0.2 m from x = 0.7 m to 1.2 m, upper part y = 0.4 m from 0.7 m to 0.95 m.
+  EXPECT_EQ(vertices_on_level(mesh, 0.2, 0.7, 1.2).size(), 21u);
+  EXPECT_EQ(vertices_on_level(mesh, 0.4, 0.7, 0.95).size(), 11u);
+}
+
+// Elastic soil under gravity in the run-out tank (rollers on the walls, fixed base): the base
+// carries the weight rho g A of the soil.
+TEST(TankMesh, ImplicitSolverCarriesTheWeightOnTheTankMesh)
+{
+  Mesh mesh(MPI_COMM_WORLD);
+  read_tank_mesh(mesh, mesh_directory + "/insa_tank_runout.msh");
+  BoundaryConditions bc;
+  bc.displacements = {{tank_boundary::bottom, true, true, nullptr},
+                      {tank_boundary::back_wall, true, false, nullptr},
+                      {tank_boundary::front_wall, true, false, nullptr}};
+  QuasiStaticSettings settings = exact_settings(1);
+  settings.density = 1700.0;
+  QuasiStaticSolver solver(mesh, elastic_soil(30e6, 0.3), bc, settings);
+  solver.advance_to(1.0);
+  EXPECT_NEAR(solver.boundary_reaction(tank_boundary::bottom)[1], 1700.0 * 9.81 * 0.72, 1e-6 * 1700.0 * 9.81 * 0.72);
+}
+
+TEST(TankMesh, MissingFileAndUnknownBoundaryIdNameTheFile)
+{
+  {
+    Mesh mesh(MPI_COMM_WORLD);
+    try
+      {
+        read_tank_mesh(mesh, mesh_directory + "/no_such_tank.msh");
+        FAIL() << "a missing mesh file was accepted";
+      }
+    catch (const std::invalid_argument &e)
+      {
+        EXPECT_NE(std::string(e.what()).find("no_such_tank.msh"), std::string::npos) << e.what();
+      }
+  }
+  {
+    Mesh mesh(MPI_COMM_WORLD);
+    try
+      {
+        read_tank_mesh(mesh, mesh_directory + "/insa_tank_runout.msh", {tank_boundary::bottom, 7});
+        FAIL() << "an absent boundary id was accepted";
+      }
+    catch (const std::invalid_argument &e)
+      {
+        EXPECT_NE(std::string(e.what()).find("insa_tank_runout.msh"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("boundary id 7"), std::string::npos) << e.what();
+      }
+  }
+  {
+    // A file that is not a mesh.
+    Mesh mesh(MPI_COMM_WORLD);
+    EXPECT_THROW(read_tank_mesh(mesh, mesh_directory + "/insa_tank_runout.geo"), std::invalid_argument);
+  }
+}
