@@ -69,9 +69,8 @@ std::vector<std::string> lines_of(const fs::path &file)
 }
 } // namespace
 
-// DISABLED in CI: the tank's REDF filling takes minutes even at this size (see
-// test_dem_pullout.cc); run it with --gtest_also_run_disabled_tests.
-TEST(PullOutCommand, DISABLED_WritesTheContract)
+// About a minute (measured 57 s on 1 thread, the filling 55 s of it).
+TEST(PullOutCommand, WritesTheContract)
 {
   const fs::path d = test_directory();
   ASSERT_EQ(error_of(write_input(d, "")), "");
@@ -82,7 +81,7 @@ TEST(PullOutCommand, DISABLED_WritesTheContract)
   double u = 0.0, T = 0.0;
   char comma = 0;
   std::istringstream(curve.back()) >> u >> comma >> T;
-  EXPECT_NEAR(u, 0.002, 1e-9);
+  EXPECT_NEAR(u, 0.002, 1e-6); // the pull stops at the first step past the end
   EXPECT_GT(T, 0.0);
   // Per sheet width: b = 0.5 m, so half the tension per metre.
   const std::vector<std::string> sheet = lines_of(out / "pullout_curve_sheet.csv");
