@@ -135,6 +135,13 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "Head displacement at the end [m]");
   prm.declare_entry("record interval", text(pull.record_interval), Patterns::Double(1e-9),
                     "Head displacement between two points of the curve (each the mean over its interval) [m]");
+  prm.declare_entry("ramp displacement", text(pull.ramp_displacement), Patterns::Double(0.0),
+                    "The clamp's speed rises linearly from 0 to the rate over this head displacement, so that "
+                    "the start does not jerk the sheet [m]");
+  prm.declare_entry("sheet local damping", text(pull.sheet_local_damping), Patterns::Double(0.0, 0.99),
+                    "Local damping of the sheet's nodes while pulling (the grains keep 'Filling/local damping'): "
+                    "damping a sheet that slides one way through fluctuating contacts drags it whatever the rate, "
+                    "so 0 by default [-]");
   prm.declare_entry("tension profiles at", "0.006, 0.06", Patterns::List(Patterns::Double(0.0)),
                     "Head displacements at which the tension along the sheet is written [m]");
   prm.leave_subsection();
@@ -224,6 +231,11 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where)
   in.pull.rate = prm.get_double("rate");
   in.pull.final_displacement = prm.get_double("final displacement");
   in.pull.record_interval = prm.get_double("record interval");
+  in.pull.ramp_displacement = prm.get_double("ramp displacement");
+  in.pull.sheet_local_damping = prm.get_double("sheet local damping");
+  if (!(in.pull.ramp_displacement < in.pull.final_displacement))
+    throw std::invalid_argument(where + ": 'Pull/ramp displacement' = " + number(in.pull.ramp_displacement) +
+                                " m must be shorter than 'Pull/final displacement'");
   for (const std::string &item : dealii::Utilities::split_string_list(prm.get("tension profiles at"), ','))
     in.profiles_at.push_back(std::stod(item));
   std::sort(in.profiles_at.begin(), in.profiles_at.end());

@@ -238,9 +238,19 @@ std::vector<PullPoint> pull_out(DemSystem &system, const PullSpec &spec,
   if (!positive(spec.record_interval))
     throw std::invalid_argument("pull-out: 'Pull/record interval' = " + std::to_string(spec.record_interval) +
                                 " must be positive [m]");
+  if (!(spec.ramp_displacement >= 0.0 && spec.ramp_displacement < spec.final_displacement))
+    throw std::invalid_argument("pull-out: 'Pull/ramp displacement' = " + std::to_string(spec.ramp_displacement) +
+                                " must lie in [0, final displacement) [m]");
   SparSheet &sheet = system.sheets().at(0);
-  const double x0 = sheet.x[0];
-  sheet.prescribe_velocity(0, Vec2(spec.rate, 0.0));
+  const double x0 = sheet.x[0], t0 = system.time();
+  // Constant acceleration over the ramp: it covers ramp_displacement in 2 ramp_displacement / rate.
+  const double ramp_time = 2.0 * spec.ramp_displacement / spec.rate;
+  const auto clamp_speed = [&] {
+    const double t = system.time() - t0 + 0.5 * system.time_step(); // at the middle of the next step
+    return ramp_time > 0.0 && t < ramp_time ? spec.rate * t / ramp_time : spec.rate;
+  };
+  sheet.prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
+  system.set_sheet_local_damping(spec.sheet_local_damping);
   std::vector<PullPoint> points;
   PullPoint start;
   system.initialise_forces();
@@ -255,6 +265,7 @@ std::vector<PullPoint> pull_out(DemSystem &system, const PullSpec &spec,
   for (;;)
     {
       system.step();
+      system.sheets()[0].prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
       sum += head_tension(system);
       ++n_summed;
       const double u = system.sheets()[0].x[0] - x0;

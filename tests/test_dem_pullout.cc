@@ -115,7 +115,7 @@ TEST(PullOutGeometry, GrainDensityGivesTheSandsUnitWeight)
   EXPECT_EQ(spec.resolved_filling().sheet->layers_below, 2u); // 0.2 m of soil in 0.1 m lifts
 }
 
-// The small tank pulled 6 mm at 20 mm/s. Before the pull the soil presses the sheet with about
+// The small tank pulled 4 mm at 5 mm/s. Before the pull the soil presses the sheet with about
 // gamma H (side-wall friction carries some of the weight). While the whole sheet slides, each
 // interface contact is on its Coulomb limit, so the head tension is tan(delta) times the normal
 // force on both faces (the sheet's weight and the node-wall forces are negligible). T_max must
@@ -123,13 +123,10 @@ TEST(PullOutGeometry, GrainDensityGivesTheSandsUnitWeight)
 // stress with the dilatancy of a dense sand (a factor 2 on sigma_v: stated bound 4 sigma_v L
 // tan(delta)). Results are the same on 1 and 2 threads, bit for bit.
 //
-// DISABLED: too slow for CI as it stands (the REDF filling of even 400 clusters in two thin lifts
-// takes minutes, and the test fills twice), and it fails its physics: at 20 mm/s the clamp
-// reaction exceeds the interface friction on the whole sheet (measured: T up to 2 x
-// tan(delta) N on a 950-cluster tank, while the interface shear equals tan(delta) N), which is the
-// rate effect of local damping and node inertia that the README describes for the sheet, much
-// larger here. Run it with --gtest_also_run_disabled_tests once the rate is lowered and the fill
-// made cheaper (see the branch report).
+// DISABLED: too slow for CI (each fill of this tank takes 55-95 s on one thread: REDF in thin
+// lifts, the lift over the sheet slowest). Run it with --gtest_also_run_disabled_tests.
+// At 20 mm/s (without the start ramp) T exceeded tan(delta) N by up to 2 x: the rate effect of
+// local damping and inertia; at 5 mm/s the plateau is the friction on both faces.
 TEST(PullOutTank, DISABLED_SmallTankPlateauAboveOneFaceFrictionAndThreadIndependent)
 {
   std::vector<std::vector<PullPoint>> curves;
@@ -155,29 +152,30 @@ TEST(PullOutTank, DISABLED_SmallTankPlateauAboveOneFaceFrictionAndThreadIndepend
       const double one_face = before.top_face * spec.geometry.anchorage_length * mu;
 
       PullSpec pull;
-      pull.rate = 0.02;
-      pull.final_displacement = 0.006;
+      pull.rate = 0.005;
+      pull.final_displacement = 0.004;
       pull.record_interval = 0.0005;
       double plateau_ratio_sum = 0.0;
       int plateau_samples = 0;
       const std::vector<PullPoint> curve = pull_out(system, pull, [&](const PullPoint &p, const DemSystem &s) {
-        if (p.head_displacement > 0.003)
+        if (p.head_displacement > 0.002)
           {
             const SheetLevelStress now = measure_sheet_level_stress(s, tank, spec.geometry, 0.02);
-            plateau_ratio_sum += head_tension(s) / (mu * now.normal_force_both_faces);
+            plateau_ratio_sum += p.head_tension / (mu * now.normal_force_both_faces);
             ++plateau_samples;
           }
       });
-      ASSERT_EQ(curve.size(), 13u);
+      ASSERT_EQ(curve.size(), 9u);
       // The pull stops at the first step past the end: within one step's travel of it.
-      EXPECT_NEAR(curve.back().head_displacement, 0.006, pull.rate * system.time_step());
+      EXPECT_NEAR(curve.back().head_displacement, 0.004, pull.rate * system.time_step());
       double T_max = 0.0;
       for (const PullPoint &p : curve)
         T_max = std::max(T_max, p.head_tension);
       EXPECT_GT(T_max, one_face);
       EXPECT_LT(T_max, 4.0 * one_face);
-      // The curve rises: the first point is the tension of the laid sheet, far below T_max.
-      EXPECT_LT(curve.front().head_tension, 0.2 * T_max);
+      // The curve rises: the first point is the tension of the laid sheet (stretched a little by
+      // the grains grown over it), below T_max.
+      EXPECT_LT(curve.front().head_tension, 0.5 * T_max);
       // On the plateau the tension is the friction on both faces.
       ASSERT_GT(plateau_samples, 0);
       EXPECT_NEAR(plateau_ratio_sum / plateau_samples, 1.0, 0.25);
