@@ -4,6 +4,7 @@
 //   geohybrid dem FILE.prm --resume        continue it from its last checkpoint
 //   geohybrid biaxial FILE.prm             REDF samples in biaxial compression, friction angle, E
 //   geohybrid calibrate FILE.prm           contact friction, kn, ks/kn fitted to target phi', E (nu)
+//   geohybrid pullout FILE.prm             pull-out of a geosynthetic anchored in the INSA tank
 //   geohybrid COMMAND --print-parameters   every parameter of COMMAND with default, unit, doc
 //
 // Input files are read with deal.II's ParameterHandler (.prm or .json). Errors in the input stop
@@ -11,6 +12,7 @@
 #include "apps/biaxial_command.h"
 #include "apps/calibrate_command.h"
 #include "apps/dem_command.h"
+#include "apps/pullout_command.h"
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -38,6 +40,8 @@ const std::map<std::string, Command> &commands()
                  geohybrid::apps::declare_biaxial_parameters, geohybrid::apps::run_biaxial_command}},
     {"calibrate", {"fit contact friction, kn and ks/kn to a target friction angle, E (and nu) by biaxial runs",
                    geohybrid::apps::declare_calibrate_parameters, geohybrid::apps::run_calibrate_command}},
+    {"pullout", {"pull-out test of a geosynthetic in the INSA tank: simple run-out or wrap-around (mode = dem)",
+                 geohybrid::apps::declare_pullout_parameters, geohybrid::apps::run_pullout_command}},
   };
   return table;
 }

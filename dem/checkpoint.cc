@@ -32,7 +32,7 @@ constexpr const char *format_name = "geohybrid DEM checkpoint";
 static_assert(sizeof(ContactState) == 24, "ContactState changed: update the checkpoint");
 static_assert(sizeof(ContactParameters) == 56, "ContactParameters changed: update the checkpoint");
 static_assert(sizeof(WallServo) == 40, "WallServo changed: update the checkpoint");
-static_assert(sizeof(Wall) == 256, "Wall changed: update the checkpoint");
+static_assert(sizeof(Wall) == 272, "Wall changed: update the checkpoint");
 static_assert(sizeof(ParticleSet) == 22 * sizeof(std::vector<double>), "ParticleSet changed: update the checkpoint");
 static_assert(sizeof(PairContacts) == 16 * sizeof(std::vector<double>) + sizeof(std::size_t),
               "PairContacts changed: update the checkpoint (the adjacency and chunk plan are derived, not stored)");
@@ -183,6 +183,7 @@ void put_wall(hid_t group, const Wall &wall, const std::string &where)
   put(group, "velocity", wall.velocity, where);
   put(group, "force_from_particles", wall.force_from_particles, where);
   put_attr(group, "loaded_length", wall.loaded_length, where);
+  put_attr<std::uint64_t>(group, "touches_sheets", wall.touches_sheets ? 1 : 0, where);
   put_law(group, "law", wall.law.parameters(), where);
 }
 
@@ -501,6 +502,9 @@ Wall get_wall(hid_t group, const std::string &where)
   wall.force_from_particles = get_vec2(group, "force_from_particles", where);
   wall.n_contacts = static_cast<std::size_t>(get_attr<std::uint64_t>(group, "n_contacts", where));
   wall.loaded_length = get_attr<double>(group, "loaded_length", where);
+  // Checkpoints written before the attribute existed: every wall touched sheets.
+  wall.touches_sheets =
+    H5Aexists(group, "touches_sheets") <= 0 || get_attr<std::uint64_t>(group, "touches_sheets", where) != 0;
   return wall;
 }
 

@@ -674,7 +674,8 @@ void DemSystem::compute_sheet_forces_and_kick()
       sheet.add_axial_forces();
       const SheetContactWork work = evaluate_sheet_contacts(particles_, sheet, sheet_contacts_[s], dt, book);
       n_broken_bonds_ += work.broken_bonds;
-      const SparSheet::StepWork step = sheet.damp_and_kick(dt, settings_.local_damping, settings_.gravity);
+      const SparSheet::StepWork step = sheet.damp_and_kick(
+        dt, sheet_local_damping_ >= 0.0 ? sheet_local_damping_ : settings_.local_damping, settings_.gravity);
       if (book)
         {
           accumulated_.interface_friction_dissipated += work.friction;
@@ -867,5 +868,11 @@ std::size_t DemSystem::n_touching_sheet_contacts() const
     n += static_cast<std::size_t>(
       std::count_if(c.state.begin(), c.state.end(), [](const ContactState &s) { return s.touching; }));
   return n;
+}
+void DemSystem::set_sheet_local_damping(double alpha)
+{
+  if (!(alpha >= 0.0 && alpha < 1.0))
+    throw std::invalid_argument("sheet local damping " + std::to_string(alpha) + " must lie in [0, 1)");
+  sheet_local_damping_ = alpha;
 }
 } // namespace geohybrid::dem

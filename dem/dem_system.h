@@ -162,6 +162,12 @@ public:
   /// contact its nodes can meet, its own interface included). For quasi-static runs.
   double required_sheet_mass_scaling(const SparSheet &sheet) const;
   const DemSettings &settings() const { return settings_; }
+  /// Local damping coefficient of the sheets' nodes, by default the bodies' (settings). Local
+  /// damping opposes a node's velocity with alpha |F|: on a sheet sliding steadily one way
+  /// through grains whose contacts fluctuate, it is a drag that does not vanish with the rate
+  /// (a pull-out runs better with the sheet undamped: pullout_tank.h). Throws unless in [0, 1).
+  void set_sheet_local_damping(double alpha);
+  double sheet_local_damping() const { return sheet_local_damping_; }
 
   /// Forces the next step to rebuild the neighbour lists (after moving particles or walls by hand).
   void request_neighbour_rebuild() { rebuild_needed_ = true; }
@@ -227,6 +233,7 @@ private:
   SoaVector<double> body_scratch_;
 
   EnergyBudget accumulated_; ///< only the dissipated terms and boundary work are used
+  double sheet_local_damping_ = -1.0; ///< negative: settings_.local_damping
 };
 
 /// Sum of values in a fixed order of fixed-size blocks: the same result for any thread count.

@@ -98,7 +98,8 @@ void SheetContactSearch::rebuild(const ParticleSet &p, const NeighbourSearch &se
       wc.node.clear();
       Vec2 closest;
       for (std::size_t k = 0; k < sheet.n_nodes(); ++k)
-        if (closest_point_on_segment(sheet.node(k), walls[w].start, walls[w].end, closest) < half_thickness + skin)
+        if (walls[w].touches_sheets &&
+            closest_point_on_segment(sheet.node(k), walls[w].start, walls[w].end, closest) < half_thickness + skin)
           wc.node.push_back(static_cast<std::uint32_t>(k));
       wc.state.assign(wc.node.size(), ContactState{});
       std::size_t o = 0;

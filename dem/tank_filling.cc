@@ -96,20 +96,32 @@ private:
   std::vector<double> mass_, inertia_, inverse_mass_, inverse_inertia_, radius_, offset_x_, offset_y_;
 };
 
-TankWalls add_tank_walls(DemSystem &system, const TankFillingSpec &t, double lid_level)
+/// The tank's walls; with slot_top > slot_bottom, the front wall (x = width) is cut into a part
+/// below the slot and one above it.
+TankWalls add_tank_walls(DemSystem &system, const TankFillingSpec &t, double lid_level, double slot_bottom = 0.0,
+                         double slot_top = 0.0)
 {
   const LinearContactLaw law(t.wall_contact);
   const double overhang = 0.1 * std::max(t.width, t.height), w = t.width, h = t.height;
+  const bool slot = slot_top > slot_bottom;
   // Active side on the left of start -> end (wall.h), counter-clockwise as in RectangularBox.
   TankWalls walls;
   walls.base = system.add_wall(Wall("base", Vec2(-overhang, 0.0), Vec2(w + overhang, 0.0), law));
-  walls.right = system.add_wall(Wall("right", Vec2(w, -overhang), Vec2(w, h + overhang), law));
+  walls.right = system.add_wall(Wall(slot ? "right below the slot" : "right", Vec2(w, -overhang),
+                                     Vec2(w, slot ? slot_bottom : h + overhang), law));
   walls.lid = system.add_wall(Wall("lid", Vec2(w + overhang, lid_level), Vec2(-overhang, lid_level), law));
   walls.left = system.add_wall(Wall("left", Vec2(0.0, h + overhang), Vec2(0.0, -overhang), law));
   system.walls()[walls.base].loaded_length = w;
   system.walls()[walls.lid].loaded_length = w;
   system.walls()[walls.left].loaded_length = h;
-  system.walls()[walls.right].loaded_length = h;
+  system.walls()[walls.right].loaded_length = slot ? slot_bottom : h;
+  if (slot)
+    {
+      walls.right_upper = system.add_wall(Wall("right above the slot", Vec2(w, slot_top), Vec2(w, h + overhang), law));
+      system.walls()[walls.right_upper].loaded_length = std::max(h - slot_top, 0.0);
+      system.walls()[walls.right].touches_sheets = false;
+      system.walls()[walls.right_upper].touches_sheets = false;
+    }
   return walls;
 }
 
@@ -136,6 +148,104 @@ void check_spec(const TankFillingSpec &t)
     throw std::invalid_argument("tank filling: gravity must be positive");
   if (!(t.growth_stress > 0.0))
     throw std::invalid_argument("tank filling: the growth stress must be positive");
+  if (t.sheet)
+    {
+      if (t.sheet->layers_below < 1 || t.sheet->layers_below >= t.n_layers)
+        throw std::invalid_argument("tank filling: the sheet is laid after " + std::to_string(t.sheet->layers_below) +
+                                    " layers; it must have between 1 and " + std::to_string(t.n_layers - 1) +
+                                    " layers below it");
+      if (!t.sheet->lay)
+        throw std::invalid_argument("tank filling: the sheet has no function to lay it");
+    }
+}
+
+/// Moves each new body [first_body, end) that a sheet would cut (a disc closer than r + t/2 to a
+/// segment, possibly the two discs of a cluster on both sides of it) off the sheet, along the
+/// segment's normal to the side of the body's centre (away from the node, near a free end).
+/// Grains are placed at random in the next layer's space, through which a laid sheet runs; a
+/// cluster placed astride the sheet would hold it pinched between its two discs forever. The
+/// grains are then at a fraction of their final size, so the short moves leave them clear of
+/// one another or nearly so (growth sorts out the rest).
+void move_new_bodies_off_sheets(ParticleSet &p, std::size_t first_body, const std::vector<SparSheet> &sheets,
+                                int n_threads)
+{
+  for (int pass = 0; pass < 4; ++pass)
+    {
+      bool moved = false;
+      for (std::size_t b = first_body; b < p.n_bodies(); ++b)
+        for (const SparSheet &sheet : sheets)
+          for (std::size_t k = 0; k < sheet.n_segments(); ++k)
+            {
+              const Vec2 a = sheet.node(k), e = sheet.node(k + 1), centre(p.x[b], p.y[b]);
+              const double length = (e - a).norm();
+              const Vec2 u = (e - a) / length, n = perp(u);
+              const double side = n.dot(centre - a) >= 0.0 ? 1.0 : -1.0;
+              double shift = 0.0;
+              Vec2 direction = side * n;
+              for (std::uint32_t d = p.first_disc[b]; d < p.first_disc[b] + p.n_discs[b]; ++d)
+                {
+                  const Vec2 c(p.disc_x[d], p.disc_y[d]);
+                  const double clearance = p.disc_radius[d] + 0.5 * sheet.thickness() + 1e-6;
+                  const double along = u.dot(c - a);
+                  if (along >= 0.0 && along <= length)
+                    shift = std::max(shift, clearance - side * n.dot(c - a));
+                  else
+                    {
+                      // Past an end: away from the end node (at a joint, the next segment acts).
+                      const Vec2 node = along < 0.0 ? a : e;
+                      const double distance = (c - node).norm();
+                      if (distance < clearance && ((along < 0.0 && k == 0) || (along > length && k + 1 == sheet.n_segments())))
+                        {
+                          direction = distance > 0.0 ? Vec2((c - node) / distance) : direction;
+                          shift = std::max(shift, clearance - distance);
+                        }
+                    }
+                }
+              if (shift > 0.0)
+                {
+                  p.x[b] += shift * direction.x();
+                  p.y[b] += shift * direction.y();
+                  for (std::uint32_t d = p.first_disc[b]; d < p.first_disc[b] + p.n_discs[b]; ++d)
+                    {
+                      p.disc_x[d] += shift * direction.x();
+                      p.disc_y[d] += shift * direction.y();
+                    }
+                  moved = true;
+                }
+            }
+      if (!moved)
+        break;
+    }
+  p.update_disc_positions(n_threads); // the same positions, computed as everywhere else
+}
+
+/// The sheet of `laying`, made on the settled layers below it, checked against the tank, and the
+/// height of its slot.
+SparSheet lay_sheet(const SheetLaying &laying, const DemSystem &settled, const TankFillingSpec &t, double &slot_height)
+{
+  SparSheet sheet = laying.lay(settled);
+  const Vec2 clamp = sheet.node(0);
+  if (!(clamp.x() > t.width))
+    throw std::invalid_argument("tank filling: the first node of sheet '" + sheet.name() + "' (x = " +
+                                std::to_string(clamp.x()) + " m) must lie outside the front wall (x = " +
+                                std::to_string(t.width) + " m), where the clamp holds it");
+  // Nodes between the clamp and the front wall are outside the tank too, in front of the slot.
+  for (std::size_t k = 1; k < sheet.n_nodes(); ++k)
+    if (!(sheet.x[k] > 0.0 && sheet.x[k] <= clamp.x() && sheet.y[k] > 0.0 && sheet.y[k] < t.height))
+      throw std::invalid_argument("tank filling: node " + std::to_string(k) + " of sheet '" + sheet.name() +
+                                  "' lies outside the tank");
+  const ParticleSet &p = settled.particles();
+  const double smallest = 2.0 * *std::min_element(p.disc_radius.begin(), p.disc_radius.end());
+  slot_height = laying.slot_height > 0.0 ? laying.slot_height : 0.5 * (sheet.thickness() + smallest);
+  if (!(slot_height > sheet.thickness()))
+    throw std::invalid_argument("tank filling: the slot height " + std::to_string(slot_height) +
+                                " m must exceed the thickness of sheet '" + sheet.name() + "' (" +
+                                std::to_string(sheet.thickness()) + " m)");
+  if (!(slot_height < smallest))
+    throw std::invalid_argument("tank filling: the slot height " + std::to_string(slot_height) +
+                                " m must be below the smallest grain's diameter (" + std::to_string(smallest) +
+                                " m), or the soil runs out through it");
+  return sheet;
 }
 } // namespace
 
@@ -193,6 +303,7 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
   std::vector<TankLayer> layers;
   std::unique_ptr<DemSystem> settled; // the layers placed so far, settled under gravity
   TankWalls walls{};
+  double slot_bottom = 0.0, slot_top = 0.0; // no slot until a sheet is laid
   for (std::size_t k = 0; k < n_layers; ++k)
     {
       TankLayer layer;
@@ -223,6 +334,8 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
         {
           throw std::invalid_argument(where + e.what());
         }
+      if (settled && !settled->sheets().empty())
+        move_new_bodies_off_sheets(particles, first_body, settled->sheets(), t.n_threads);
       layer.first_body = first_body;
       layer.n_bodies = particles.n_bodies() - first_body;
       // While this layer grows, the grains below its slab are fixed (a compacted lift is nearly
@@ -245,7 +358,11 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
 
       // 2. Growth without gravity under the lid, to the porosity of the layer's slab.
       DemSystem growing(std::move(particles), material, growth_settings);
-      walls = add_tank_walls(growing, t, lid_level);
+      walls = add_tank_walls(growing, t, lid_level, slot_bottom, slot_top);
+      // A sheet laid on the layers below stays where it lies while this layer grows round it.
+      if (settled)
+        for (const SparSheet &sheet : settled->sheets())
+          growing.add_sheet(sheet);
       const GrowOnlyFrom grow_layer(growing.particles(), first_body);
       double area_factor = 1.0; // (size now / starting size)^2 of the growing particles
       RedfGrowth growth;
@@ -292,7 +409,7 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
             state.particles.inverse_inertia[b] = 1.0 / state.particles.inertia[b];
           }
       settled = std::make_unique<DemSystem>(state.particles, material, settling_settings);
-      add_tank_walls(*settled, t, lid_level);
+      add_tank_walls(*settled, t, lid_level, slot_bottom, slot_top);
       settled->restore_state(std::move(state));
       settled->request_neighbour_rebuild();
       const std::uint64_t check_every = 200;
@@ -316,11 +433,19 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
             progress(done + share * (0.7 + 0.3 * std::min(1.0, static_cast<double>(layer.n_settling_steps) / 50000.0)));
         }
       layers.push_back(layer);
+      if (t.sheet && k + 1 == t.sheet->layers_below)
+        {
+          double slot_height = 0.0;
+          const SparSheet sheet = lay_sheet(*t.sheet, *settled, t, slot_height);
+          slot_bottom = sheet.y[0] - 0.5 * slot_height;
+          slot_top = sheet.y[0] + 0.5 * slot_height;
+          settled->add_sheet(sheet); // carried into the next layer's growth
+        }
     }
   for (TankLayer &layer : layers)
     layer.porosity = slab_porosity(settled->particles(), 0.0, t.width, layer.bottom, layer.top);
   if (progress)
     progress(1.0);
-  return FilledTank{std::move(*settled), walls, std::move(layers)};
+  return FilledTank{std::move(*settled), walls, std::move(layers), slot_bottom, slot_top};
 }
 } // namespace geohybrid::dem

@@ -22,14 +22,36 @@
 // The result is a DemSystem in equilibrium under gravity, with the porosity of each layer's slab
 // at the end of its growth and in the final fill (settling under the layers above compacts the
 // lower ones a little).
+//
+// A geosynthetic is laid as in the laboratory, on a lift at its depth (TankFillingSpec::sheet):
+// once the layers below it have settled, the sheet is added to the system and stays in the tank
+// while the layers above are placed, grown and settled around it. It leaves the tank through a
+// slot in the front wall (x = width), cut at the level of its first node (the clamp, outside the
+// tank) when it is laid: a gap between two wall segments, narrower than the grains (checked), so
+// that the sheet passes and the soil does not.
 #include "dem_system.h"
 #include "packing.h"
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace geohybrid::dem
 {
+/// A sheet laid while the tank is filled.
+struct SheetLaying
+{
+  /// The sheet is laid once this many layers have settled: in [1, n_layers - 1].
+  std::size_t layers_below = 1;
+  /// Height of the slot in the front wall, centred on the sheet's first node; above the sheet's
+  /// thickness and below the smallest grain's diameter. 0 = halfway between the two [m].
+  double slot_height = 0.0;
+  /// Makes the sheet from the settled layers below it (e.g. resting on their surface). Its first
+  /// node must lie outside the front wall, x > width; make it kinematic (prescribe_velocity) to
+  /// hold the sheet while the tank is filled.
+  std::function<SparSheet(const DemSystem &settled)> lay;
+};
+
 struct TankFillingSpec
 {
   double width = 1.0;                 ///< inner width of the tank [m]
@@ -59,6 +81,7 @@ struct TankFillingSpec
   std::uint64_t seed = 1;
   int n_threads = 1;
   std::uint64_t max_steps_per_layer = 2'000'000; ///< growth and settling of one layer
+  std::optional<SheetLaying> sheet;   ///< a geosynthetic laid at its depth while filling
 };
 
 /// The tank's walls: indices into DemSystem::walls(). The base spans [0, width] at y = 0, the
@@ -67,6 +90,10 @@ struct TankFillingSpec
 struct TankWalls
 {
   std::size_t base, right, lid, left;
+  /// With a slot in the front wall: `right` is the wall below the slot, `right_upper` the one
+  /// above it; without, right_upper == no_wall.
+  std::size_t right_upper = no_wall;
+  static constexpr std::size_t no_wall = static_cast<std::size_t>(-1);
 };
 
 struct TankLayer
@@ -88,11 +115,13 @@ struct FilledTank
   DemSystem system;    ///< under gravity, in equilibrium, walls fixed
   TankWalls walls;
   std::vector<TankLayer> layers; ///< bottom first
+  double slot_bottom = 0.0, slot_top = 0.0; ///< the front wall's slot, if a sheet was laid [m]
 };
 
 /// Fills the tank. `progress` (optional) is called now and then with a fraction in [0, 1].
 /// Throws std::invalid_argument for a spec that cannot work (no layer, a porosity outside
-/// [0.05, 0.8], layers too thin for their particles) and std::runtime_error when a layer cannot
+/// [0.05, 0.8], layers too thin for their particles, a sheet laid outside [1, n_layers - 1] or whose
+/// first node is inside the tank, a slot narrower than the sheet or wider than the smallest grain) and std::runtime_error when a layer cannot
 /// reach its porosity or the fill does not settle within max_steps_per_layer, naming the layer.
 FilledTank fill_tank_in_layers(const TankFillingSpec &spec, const std::function<void(double)> &progress = {});
 

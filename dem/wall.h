@@ -38,6 +38,11 @@ struct Wall
   /// Length over which the wall's normal force is spread to give its stress; 0 = the segment's
   /// own length. Walls of a box overhang its corners, so their loaded length is the box side.
   double loaded_length = 0.0;
+  /// Whether the nodes of sheets touch this wall (sheet_contacts.h). False for the two walls
+  /// whose gap is the slot a sheet leaves a tank through: the slot guides the grains, while the
+  /// sheet, held at the slot's level by its clamp, slides through it without catching on its
+  /// edges (a gap narrower than the grains leaves a sheet almost no room).
+  bool touches_sheets = true;
 
   // Reported after each step.
   Vec2 force_from_particles = Vec2::Zero(); ///< resultant force the particles apply [N/m]

@@ -1,0 +1,401 @@
+// `geohybrid pullout`: the pull-out test of the reference paper (sections 4.3-4.5). The tank is
+// filled in layers with the calibrated soil, the sheet laid at its depth on the lift below it;
+// then the clamp, outside the front wall, pulls the sheet horizontally at a set rate and the run
+// records the head tension (the clamp's reaction) against the head displacement.
+//
+// Before pulling, the run measures the normal stress the soil applies to the sheet (on its top
+// and bottom faces, and Love-Weber in a band of soil above it) and reports it against gamma H:
+// side-wall friction carries part of the weight, and the sheet lies a little above its nominal
+// level (on the grains of the lift below), so sigma_v < gamma H is expected.
+//
+// Outputs, in the output directory:
+//   pullout_curve.csv        head_displacement_m,head_tension_kN_per_m (per metre of width)
+//   pullout_curve_sheet.csv  the same for the sheet's width b (kN), as the paper's Table 6
+//   sheet_displacements.csv  displacement of the sheet's beginning, middle and end of the anchorage
+//   sheet_tension.csv        tension along the sheet at the chosen head displacements
+//   pullout_curve.png        the curve, with the experimental T_max if given
+//   parameters.prm, summary.json (written last)
+#include "pullout_command.h"
+
+#include "contact_parameters.h"
+#include "plot.h"
+#include "run_directory.h"
+
+#include "dem/measurements.h"
+#include "dem/pullout_tank.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <unistd.h>
+
+namespace geohybrid::apps
+{
+using dealii::ParameterHandler;
+namespace Patterns = dealii::Patterns;
+
+void declare_pullout_parameters(ParameterHandler &prm)
+{
+  const dem::PullOutGeometry g;
+  const dem::SheetParameters sheet;
+  const dem::TankFillingSpec fill;
+  const dem::PullSpec pull;
+  const auto text = [](double v) {
+    std::ostringstream s;
+    s.imbue(std::locale::classic());
+    s << std::setprecision(12) << v;
+    return s.str();
+  };
+  prm.declare_entry("output directory", "output/pullout", Patterns::Anything(),
+                    "Directory for all results, created if needed, relative to the working directory");
+  prm.declare_entry("threads", "2", Patterns::Integer(1, 256), "Number of threads [-]");
+  prm.declare_entry("mode", "dem", Patterns::Selection("dem|fem|hybrid"),
+                    "Soil model: dem (discrete elements everywhere); fem (continuum) and hybrid (DEM near the "
+                    "sheet, continuum elsewhere) are not available yet [-]");
+
+  prm.enter_subsection("Tank");
+  prm.declare_entry("length", text(g.tank_length), Patterns::Double(1e-6),
+                    "Inner length from the back wall to the front wall; the INSA tank's length is not given in the "
+                    "paper's text, 1.5 m is this model's choice [m]");
+  prm.declare_entry("fill height", text(g.fill_height), Patterns::Double(1e-6),
+                    "Height of the soil surface above the base (H plus the soil below the sheet) [m]");
+  prm.declare_entry("wall friction angle", text(g.wall_friction_deg), Patterns::Double(0.0, 89.99),
+                    "Soil-wall friction angle (measured: 28 degrees, section 4.3) [deg]");
+  prm.declare_entry("clamp offset", text(g.clamp_offset), Patterns::Double(1e-6),
+                    "Distance of the clamp (the sheet's first node) outside the front wall [m]");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Anchorage");
+  prm.declare_entry("type", "simple run-out", Patterns::Selection("simple run-out|wrap-around"),
+                    "Simple run-out (L, H) or wrap-around (L, D1, D2, B, H = D1 + D2), section 2.2 [-]");
+  prm.declare_entry("H", text(g.cover), Patterns::Double(1e-6), "Soil above the lower part of the sheet [m]");
+  prm.declare_entry("L", text(g.anchorage_length), Patterns::Double(1e-6),
+                    "Length of the lower part of the sheet in the soil, from the front wall [m]");
+  prm.declare_entry("D1", text(g.return_height), Patterns::Double(0.0),
+                    "Wrap-around: height of the vertical return [m]");
+  prm.declare_entry("D2", text(g.upper_cover), Patterns::Double(0.0),
+                    "Wrap-around: soil above the upper part [m]");
+  prm.declare_entry("B", text(g.upper_length), Patterns::Double(0.0),
+                    "Wrap-around: length of the upper part, from the return towards the front wall [m]");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Sheet");
+  prm.declare_entry("width", text(g.sheet_width), Patterns::Double(1e-6),
+                    "b, width of the sheet in the bench, for the per-sheet outputs (INSA: 0.5 m) [m]");
+  prm.declare_entry("axial stiffness", text(sheet.axial_stiffness), Patterns::Double(1e-6),
+                    "J per metre of width (GT230: 2104 kN/m, GT75: 687 kN/m, Table 2) [N/m]");
+  prm.declare_entry("thickness", text(sheet.thickness), Patterns::Double(1e-9), "For contact (GT230: 3.2 mm) [m]");
+  prm.declare_entry("areal mass", text(sheet.areal_mass), Patterns::Double(1e-9),
+                    "Mass per unit area (GT230: 620 g/m2) [kg/m^2]");
+  prm.declare_entry("segment length", "0.01", Patterns::Double(1e-6), "Longest spar element [m]");
+  prm.enter_subsection("Interface");
+  declare_contact_parameters(prm, dem::default_interface_parameters());
+  prm.leave_subsection();
+  prm.leave_subsection();
+
+  prm.enter_subsection("Soil");
+  prm.declare_entry("unit weight", "15.2e3", Patterns::Double(1e-6),
+                    "gamma of the soil at the fill's porosity (sand 1: 15.2 kN/m3, Table 1); sets the grains' "
+                    "density gamma / (g (1 - n)) [N/m^3]");
+  prm.enter_subsection("Particle contact");
+  declare_contact_parameters(prm, dem::ContactParameters());
+  prm.leave_subsection();
+  prm.leave_subsection();
+
+  prm.enter_subsection("Filling");
+  prm.declare_entry("number of particles", "20000", Patterns::Integer(2), "Particles in the whole fill [-]");
+  prm.declare_entry("number of layers", "6", Patterns::Integer(2),
+                    "Lifts of equal thickness; one boundary must lie at the sheet level (fill height - H) [-]");
+  prm.declare_entry("shape", "two-disc cluster", Patterns::Selection("disc|two-disc cluster"),
+                    "Particle shape; the paper uses clusters of two discs of diameters d and 0.9 d");
+  prm.declare_entry("size ratio", "0.5", Patterns::Double(0.05, 1.0),
+                    "Smallest over largest particle size (uniform distribution) [-]");
+  prm.declare_entry("target porosity", text(fill.target_porosity), Patterns::Double(0.05, 0.8),
+                    "2D porosity of every layer (Table 5: 0.2) [-]");
+  prm.declare_entry("porosity tolerance", text(fill.porosity_tolerance), Patterns::Double(1e-6, 0.1),
+                    "Accepted porosity error [-]");
+  prm.declare_entry("growth stress", text(fill.growth_stress), Patterns::Double(1e-6),
+                    "Lid stress at which a growing layer counts as jammed (compaction of a lift) [Pa]");
+  prm.declare_entry("local damping", text(fill.local_damping), Patterns::Double(0.0, 0.99),
+                    "PFC local damping while filling and pulling [-]");
+  prm.declare_entry("equilibrium unbalanced ratio", text(fill.equilibrium_unbalanced_ratio),
+                    Patterns::Double(1e-9, 0.1), "Settling stops below this unbalanced-force ratio [-]");
+  prm.declare_entry("seed", "1", Patterns::Integer(0), "Seed of the random fill [-]");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Pull");
+  prm.declare_entry("rate", text(pull.rate), Patterns::Double(1e-9), "Clamp speed [m/s]");
+  prm.declare_entry("final displacement", text(pull.final_displacement), Patterns::Double(1e-9),
+                    "Head displacement at the end [m]");
+  prm.declare_entry("record interval", text(pull.record_interval), Patterns::Double(1e-9),
+                    "Head displacement between two points of the curve (each the mean over its interval) [m]");
+  prm.declare_entry("ramp displacement", text(pull.ramp_displacement), Patterns::Double(0.0),
+                    "The clamp's speed rises linearly from 0 to the rate over this head displacement, so that "
+                    "the start does not jerk the sheet [m]");
+  prm.declare_entry("sheet local damping", text(pull.sheet_local_damping), Patterns::Double(0.0, 0.99),
+                    "Local damping of the sheet's nodes while pulling (the grains keep 'Filling/local damping'): "
+                    "damping a sheet that slides one way through fluctuating contacts drags it whatever the rate, "
+                    "so 0 by default [-]");
+  prm.declare_entry("tension profiles at", "0.006, 0.06", Patterns::List(Patterns::Double(0.0)),
+                    "Head displacements at which the tension along the sheet is written [m]");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Output");
+  prm.declare_entry("experimental T_max", "", Patterns::Anything(),
+                    "Measured maximum head tension to mark on the plot; empty = none [kN/m]");
+  prm.declare_entry("stress band", "0.05", Patterns::Double(1e-6),
+                    "Height of the soil band above the sheet where the Love-Weber vertical stress is measured [m]");
+  prm.leave_subsection();
+}
+
+namespace
+{
+std::string number(double value, int digits = 12)
+{
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s << std::setprecision(digits) << value;
+  return s.str();
+}
+
+struct PullOutInput
+{
+  dem::PullOutTankSpec tank;
+  dem::PullSpec pull;
+  std::vector<double> profiles_at;
+  std::optional<double> experimental_T_max; ///< [N/m]
+  double stress_band = 0.05;
+};
+
+PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where)
+{
+  PullOutInput in;
+  dem::PullOutGeometry &g = in.tank.geometry;
+  prm.enter_subsection("Tank");
+  g.tank_length = prm.get_double("length");
+  g.fill_height = prm.get_double("fill height");
+  g.wall_friction_deg = prm.get_double("wall friction angle");
+  g.clamp_offset = prm.get_double("clamp offset");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Anchorage");
+  g.anchorage = prm.get("type") == "wrap-around" ? dem::Anchorage::wrap_around : dem::Anchorage::simple_run_out;
+  g.cover = prm.get_double("H");
+  g.anchorage_length = prm.get_double("L");
+  g.return_height = prm.get_double("D1");
+  g.upper_cover = prm.get_double("D2");
+  g.upper_length = prm.get_double("B");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Sheet");
+  g.sheet_width = prm.get_double("width");
+  dem::SheetParameters &s = in.tank.sheet;
+  s.axial_stiffness = prm.get_double("axial stiffness");
+  s.thickness = prm.get_double("thickness");
+  s.areal_mass = prm.get_double("areal mass");
+  in.tank.max_segment_length = prm.get_double("segment length");
+  prm.enter_subsection("Interface");
+  s.interface = parse_contact_parameters(prm, where + ", subsection Sheet/Interface");
+  prm.leave_subsection();
+  prm.leave_subsection();
+
+  prm.enter_subsection("Soil");
+  in.tank.unit_weight = prm.get_double("unit weight");
+  prm.enter_subsection("Particle contact");
+  dem::TankFillingSpec &f = in.tank.filling;
+  f.particle_contact = parse_contact_parameters(prm, where + ", subsection Soil/Particle contact");
+  prm.leave_subsection();
+  prm.leave_subsection();
+
+  f.n_threads = prm.get_integer("threads");
+  prm.enter_subsection("Filling");
+  f.n_particles = static_cast<std::size_t>(prm.get_integer("number of particles"));
+  f.n_layers = static_cast<std::size_t>(prm.get_integer("number of layers"));
+  f.shape = prm.get("shape") == "disc" ? dem::ParticleShape::disc : dem::ParticleShape::two_disc_cluster;
+  f.size_distribution = dem::SizeDistribution::uniform(prm.get_double("size ratio"));
+  f.target_porosity = prm.get_double("target porosity");
+  f.porosity_tolerance = prm.get_double("porosity tolerance");
+  f.growth_stress = prm.get_double("growth stress");
+  f.local_damping = prm.get_double("local damping");
+  f.equilibrium_unbalanced_ratio = prm.get_double("equilibrium unbalanced ratio");
+  f.seed = static_cast<std::uint64_t>(prm.get_integer("seed"));
+  prm.leave_subsection();
+
+  prm.enter_subsection("Pull");
+  in.pull.rate = prm.get_double("rate");
+  in.pull.final_displacement = prm.get_double("final displacement");
+  in.pull.record_interval = prm.get_double("record interval");
+  in.pull.ramp_displacement = prm.get_double("ramp displacement");
+  in.pull.sheet_local_damping = prm.get_double("sheet local damping");
+  if (!(in.pull.ramp_displacement < in.pull.final_displacement))
+    throw std::invalid_argument(where + ": 'Pull/ramp displacement' = " + number(in.pull.ramp_displacement) +
+                                " m must be shorter than 'Pull/final displacement'");
+  for (const std::string &item : dealii::Utilities::split_string_list(prm.get("tension profiles at"), ','))
+    in.profiles_at.push_back(std::stod(item));
+  std::sort(in.profiles_at.begin(), in.profiles_at.end());
+  prm.leave_subsection();
+
+  prm.enter_subsection("Output");
+  const std::string measured = prm.get("experimental T_max");
+  if (measured.find_first_not_of(" \t") != std::string::npos)
+    {
+      std::istringstream value(measured);
+      value.imbue(std::locale::classic());
+      double T;
+      if (!(value >> T) || !(value >> std::ws).eof() || !(T > 0.0))
+        throw std::invalid_argument(where + ": 'Output/experimental T_max' = '" + measured +
+                                    "' must be a positive number [kN/m] or empty");
+      in.experimental_T_max = 1e3 * T;
+    }
+  in.stress_band = prm.get_double("stress band");
+  prm.leave_subsection();
+
+  in.tank.validate(where);
+  if (in.pull.record_interval > in.pull.final_displacement)
+    throw std::invalid_argument(where + ": 'Pull/record interval' = " + number(in.pull.record_interval) +
+                                " m is longer than 'Pull/final displacement' = " + number(in.pull.final_displacement) +
+                                " m");
+  return in;
+}
+} // namespace
+
+int run_pullout_command(const std::string &input_file, bool resume)
+{
+  if (resume)
+    throw std::invalid_argument("geohybrid pullout: --resume is not supported yet; rerun the input");
+  ParameterHandler prm;
+  declare_pullout_parameters(prm);
+  parse_input_file(prm, input_file);
+  const std::string where = "input file '" + input_file + "'";
+  const std::string mode = prm.get("mode");
+  if (mode != "dem")
+    throw std::invalid_argument(where + ": 'mode' = " + mode +
+                                " is not yet available (the continuum and the coupling are not written); use "
+                                "'set mode = dem'");
+  const PullOutInput in = parse_pullout(prm, where);
+  const dem::PullOutGeometry &g = in.tank.geometry;
+
+  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
+  write_resolved_parameters(prm, out);
+  const auto start_time = std::chrono::steady_clock::now();
+  const auto seconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  };
+  std::cout << "geohybrid pullout: " << (g.anchorage == dem::Anchorage::wrap_around ? "wrap-around" : "simple run-out")
+            << ", H = " << number(g.cover, 4) << " m, L = " << number(g.anchorage_length, 4) << " m"
+            << (g.anchorage == dem::Anchorage::wrap_around
+                  ? ", D1 = " + number(g.return_height, 4) + " m, B = " + number(g.upper_length, 4) + " m"
+                  : std::string())
+            << "; " << in.tank.filling.n_particles << " particles, mode dem" << std::endl;
+
+  // 1. The tank, filled in layers, the sheet laid at its depth.
+  ProgressReport fill_progress("filling the tank", 1.0);
+  dem::PullOutTank tank = dem::fill_pull_out_tank(in.tank, [&](double f) { fill_progress.update(f); });
+  fill_progress.finish();
+  dem::DemSystem &system = tank.tank.system;
+  const double fill_time = seconds();
+  const double actual_cover = g.fill_height - tank.sheet_level;
+  const double gamma_H = in.tank.unit_weight * actual_cover;
+  const dem::SheetLevelStress before = dem::measure_sheet_level_stress(system, tank, g, in.stress_band);
+  const double mu = std::tan(dem::degrees_to_radians(in.tank.sheet.interface.friction_angle_deg));
+  const double one_face = before.top_face * g.anchorage_length * mu;
+  std::cout << "pullout: tank filled in " << number(fill_time, 4) << " s (" << system.particles().n_bodies()
+            << " particles, porosity of the layers";
+  for (const dem::TankLayer &layer : tank.tank.layers)
+    std::cout << ' ' << number(layer.porosity, 3);
+  std::cout << "); sheet at y = " << number(tank.sheet_level, 4) << " m (H = " << number(actual_cover, 4)
+            << " m as laid); vertical stress at the sheet: top face " << number(before.top_face / 1e3, 4)
+            << " kPa, Love-Weber above " << number(before.love_weber_above / 1e3, 4) << " kPa, gamma H "
+            << number(gamma_H / 1e3, 4) << " kPa" << std::endl;
+
+  // 2. The pull.
+  std::ofstream curve(out / "pullout_curve.csv"), per_sheet(out / "pullout_curve_sheet.csv"),
+    displacements(out / "sheet_displacements.csv"), profiles(out / "sheet_tension.csv");
+  curve << "head_displacement_m,head_tension_kN_per_m\n";
+  per_sheet << "head_displacement_m,head_tension_kN\n";
+  displacements << "head_displacement_m,beginning_displacement_m,middle_displacement_m,end_displacement_m\n";
+  profiles << "head_displacement_m,node,arc_length_m,x_m,y_m,tension_kN_per_m\n";
+  const std::size_t middle = (tank.first_node_inside + tank.lower_part_end) / 2;
+  std::size_t next_profile = 0;
+  double T_max = 0.0, u_at_T_max = 0.0;
+  ProgressReport progress("pulling", in.pull.final_displacement);
+  const auto record = [&](const dem::PullPoint &p, const dem::DemSystem &s) {
+    const dem::SparSheet &sheet = s.sheets()[0];
+    curve << std::setprecision(10) << p.head_displacement << ',' << p.head_tension / 1e3 << '\n';
+    per_sheet << std::setprecision(10) << p.head_displacement << ',' << p.head_tension * g.sheet_width / 1e3 << '\n';
+    const auto moved = [&](std::size_t k) { return sheet.x[k] - tank.initial_nodes[k].x(); };
+    displacements << std::setprecision(10) << p.head_displacement << ',' << moved(tank.first_node_inside) << ','
+                  << moved(middle) << ',' << moved(tank.lower_part_end) << '\n';
+    while (next_profile < in.profiles_at.size() && p.head_displacement >= in.profiles_at[next_profile] - 1e-12)
+      {
+        for (std::size_t k = 0; k < sheet.n_segments(); ++k)
+          profiles << std::setprecision(10) << p.head_displacement << ',' << k << ','
+                   << 0.5 * (tank.arc_length[k] + tank.arc_length[k + 1]) << ',' << 0.5 * (sheet.x[k] + sheet.x[k + 1])
+                   << ',' << 0.5 * (sheet.y[k] + sheet.y[k + 1]) << ',' << sheet.tension[k] / 1e3 << '\n';
+        ++next_profile;
+      }
+    if (p.head_tension > T_max)
+      {
+        T_max = p.head_tension;
+        u_at_T_max = p.head_displacement;
+      }
+    progress.update(p.head_displacement);
+  };
+  dem::pull_out(system, in.pull, record);
+  progress.finish();
+  for (std::ofstream *f : {&curve, &per_sheet, &displacements, &profiles})
+    if (!f->flush())
+      throw std::runtime_error("cannot write the results in " + out.string());
+
+  // 3. The plot, with the experimental T_max as a horizontal line if given.
+  std::vector<PlotSeries> series{{out / "pullout_curve.csv", 1, 2, "DEM", 1e3, 1.0}};
+  if (in.experimental_T_max)
+    {
+      const std::filesystem::path line = out / "experimental_T_max.csv";
+      std::ofstream f(line);
+      f << "head_displacement_m,T_max_kN_per_m\n0," << number(*in.experimental_T_max / 1e3) << '\n'
+        << number(in.pull.final_displacement) << ',' << number(*in.experimental_T_max / 1e3) << '\n';
+      series.push_back({line, 1, 2, "experiment, T_max", 1e3, 1.0});
+    }
+  plot_png(out / "pullout_curve.png", "Pull-out, head tension", {{"head displacement [mm]", "head tension [kN/m]", series}});
+
+  const double wall_time = seconds();
+  Summary summary;
+  summary.set("command", "pullout");
+  summary.set("mode", "dem");
+  summary.set("anchorage", g.anchorage == dem::Anchorage::wrap_around ? "wrap-around" : "simple run-out");
+  summary.set("T_max_kN_per_m", T_max / 1e3);
+  summary.set("T_max_kN_for_sheet_width", T_max * g.sheet_width / 1e3);
+  summary.set("head_displacement_at_T_max_m", u_at_T_max);
+  if (in.experimental_T_max)
+    {
+      summary.set("experimental_T_max_kN_per_m", *in.experimental_T_max / 1e3);
+      summary.set("T_max_difference_percent", 100.0 * (T_max / *in.experimental_T_max - 1.0));
+    }
+  summary.set("n_particles", static_cast<double>(system.particles().n_bodies()));
+  summary.set("n_sheet_nodes", static_cast<double>(system.sheets()[0].n_nodes()));
+  summary.set("sheet_level_m", tank.sheet_level);
+  summary.set("H_as_laid_m", actual_cover);
+  summary.set("gamma_H_Pa", gamma_H);
+  summary.set("sigma_v_top_face_Pa", before.top_face);
+  summary.set("sigma_v_bottom_face_Pa", before.bottom_face);
+  summary.set("sigma_v_love_weber_above_Pa", before.love_weber_above);
+  summary.set("sigma_v_over_gamma_H", before.top_face / gamma_H);
+  summary.set("one_face_friction_kN_per_m", one_face / 1e3);
+  summary.set("time_step_s", system.time_step());
+  summary.set("fill_wall_time_s", fill_time);
+  summary.set("wall_time_s", wall_time);
+  summary.write(out / "summary.json");
+  std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m (" << number(T_max * g.sheet_width / 1e3, 4)
+            << " kN for b = " << number(g.sheet_width, 3) << " m) at " << number(1e3 * u_at_T_max, 3) << " mm"
+            << (in.experimental_T_max ? "; experiment " + number(*in.experimental_T_max / 1e3, 4) + " kN/m" : std::string())
+            << "; " << number(wall_time, 4) << " s\nresults in " << out.string() << '\n';
+  return 0;
+}
+} // namespace geohybrid::apps

@@ -1,0 +1,14 @@
+#pragma once
+// `geohybrid pullout FILE.prm`: a pull-out test of a geosynthetic anchored in the INSA tank
+// (reference paper, sections 2.2 and 4.3): simple run-out or wrap-around, head tension against
+// head displacement. 'mode = dem' runs the discrete model (dem/pullout_tank.h); the continuum
+// and hybrid modes share the input file and are not written yet.
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace geohybrid::apps
+{
+void declare_pullout_parameters(dealii::ParameterHandler &prm);
+int run_pullout_command(const std::string &input_file, bool resume);
+} // namespace geohybrid::apps

@@ -1,0 +1,155 @@
+#pragma once
+// The INSA pull-out tank of the reference paper (sections 2.2 and 4.3, Figure 7) as a DEM model:
+// a rectangular tank filled with soil in layers, a geosynthetic anchored in it, pulled out by a
+// clamp that moves horizontally at a set rate; the head tension against the head displacement.
+//
+// Geometry (x along the pull, y up, per metre of width as everything in 2D):
+//
+//   y = fill_height  +------------------------------------------------+
+//                    |                  soil                          |
+//                    |        (wrap-around: upper part B at D2 depth) |
+//                    |        +--------------- B ----->               |  front wall x = length,
+//                    |        | D1                                    |  slot at the sheet level
+//   y = sheet level  |        +============= L ======================== o clamp (outside)
+//                    |                                                |
+//   y = 0            +------------------------------------------------+
+//                  x = 0 (back wall)                                x = length
+//
+// Simple run-out: the sheet runs from the clamp, through the slot, L into the soil at depth H
+// below the surface. Wrap-around: the same lower part, a vertical return D1 up at its end, and an
+// upper part B back towards the front wall, D2 below the surface (H = D1 + D2). One SparSheet.
+//
+// The soil's unit weight is that of the sand in the tank: a 2D assembly of porosity n has the
+// unit weight gamma when its grains have the density gamma / (g (1 - n)) (sand 1: 15.2 kN/m3 at
+// n = 0.2 gives 1937 kg/m3). The weight per metre of the 2D model is gamma times the area.
+//
+// Filling (tank_filling.h): layers up to the sheet level, the sheet laid on their surface, layers
+// above. The sheet therefore lies on the grains of the last lift below it, a little above the
+// nominal level (about one grain); its actual depth is reported. Walls have the wall friction
+// (28 degrees in the paper, measured) and the soil's stiffness.
+#include "tank_filling.h"
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace geohybrid::dem
+{
+enum class Anchorage
+{
+  simple_run_out,
+  wrap_around
+};
+
+/// The tank and the anchorage, plain data. Defaults: the INSA bench with a simple run-out of
+/// GT230 under H = 0.40 m of sand 1 (L = 1 m, as the paper's calibration). The paper's text does
+/// not give the tank's length and the soil depth below the sheet (Figure 7 is lost): 1.5 m and
+/// 0.2 m are this model's choice, long enough behind the anchorage (0.5 m) for the soil to move.
+struct PullOutGeometry
+{
+  double tank_length = 1.5;        ///< inner length, back wall (x = 0) to front wall [m]
+  double fill_height = 0.6;        ///< height of the soil surface above the base [m]
+  Anchorage anchorage = Anchorage::simple_run_out;
+  double cover = 0.40;             ///< H: soil above the lower part of the sheet [m]
+  double anchorage_length = 1.0;   ///< L: length of the lower part in the soil [m]
+  double return_height = 0.2;      ///< D1: wrap-around, vertical return [m]
+  double upper_cover = 0.2;        ///< D2: wrap-around, soil above the upper part [m]
+  double upper_length = 0.5;       ///< B: wrap-around, length of the upper part [m]
+  double sheet_width = 0.5;        ///< b: the sheet's width in the bench, for per-sheet outputs [m]
+  double wall_friction_deg = 28.0; ///< soil-wall friction angle (measured, section 4.3) [deg]
+  double clamp_offset = 0.02;      ///< distance of the clamp outside the front wall [m]
+
+  /// Throws std::invalid_argument naming `where` and the parameter (by its input-file name) if
+  /// the sheet does not fit in the tank: H not below the fill height, L not shorter than the
+  /// tank, B longer than L (the upper part would leave through the front wall), H != D1 + D2, ...
+  void validate(const std::string &where) const;
+  /// y of the lower part of the sheet, nominally: fill_height - H [m].
+  double sheet_level() const { return fill_height - cover; }
+  /// Corners of the sheet's polyline with the lower part at `level`: the clamp first.
+  std::vector<Vec2> sheet_corners(double level) const;
+};
+
+/// Solid density that gives a 2D assembly of porosity `porosity` the unit weight `unit_weight`:
+/// gamma / (g (1 - n)) [kg/m^3].
+double solid_density_for_unit_weight(double unit_weight, double porosity, double gravity);
+
+struct PullOutTankSpec
+{
+  PullOutGeometry geometry;
+  SheetParameters sheet;            ///< GT230 and the paper's interface by default
+  double max_segment_length = 0.01; ///< of the sheet's spars [m]
+  /// The soil and the layers: width, height, density, wall contact and sheet are set from the
+  /// geometry and unit_weight (the wall law is the soil's with the wall friction angle); the
+  /// number of layers must put a layer boundary at the sheet level.
+  TankFillingSpec filling;
+  double unit_weight = 15.2e3;      ///< gamma of the soil at the fill's target porosity [N/m^3]
+
+  /// Throws std::invalid_argument naming the parameter.
+  void validate(const std::string &where) const;
+  /// The filling spec as used: the geometry's tank, density from the unit weight, the sheet.
+  TankFillingSpec resolved_filling() const;
+};
+
+/// A filled tank with its sheet (index 0 of system.sheets()), in equilibrium, clamp fixed.
+struct PullOutTank
+{
+  FilledTank tank;
+  double sheet_level = 0.0;          ///< actual y of the lower part as laid [m]
+  std::size_t lower_part_end = 0;    ///< node at the far end of the lower part
+  std::size_t first_node_inside = 0; ///< first node inside the front wall
+  std::vector<double> arc_length;    ///< of each node from the clamp, as laid [m]
+  std::vector<Vec2> initial_nodes;   ///< node positions before the pull [m]
+};
+
+/// Fills the tank in layers, laying the sheet at its depth, then frees the sheet (but the clamp)
+/// and lets everything settle. Throws as fill_tank_in_layers.
+PullOutTank fill_pull_out_tank(const PullOutTankSpec &spec, const std::function<void(double)> &progress = {});
+
+/// What the soil does to the lower part of the sheet: the normal stresses on its top and bottom
+/// faces (sheet_face_stresses over the lower part inside the tank), the total normal force on
+/// both faces, and the Love-Weber vertical stress in a band of soil of `band` height just above
+/// the lower part (x over the anchorage) [Pa, N/m]. Compression positive.
+struct SheetLevelStress
+{
+  double top_face = 0.0, bottom_face = 0.0;
+  double normal_force_both_faces = 0.0;
+  double love_weber_above = 0.0;
+  double lower_part_length = 0.0; ///< current length of the segments measured [m]
+};
+SheetLevelStress measure_sheet_level_stress(const DemSystem &system, const PullOutTank &tank,
+                                            const PullOutGeometry &geometry, double band);
+
+/// The head tension now: the clamp's reaction along the pull (+x) [N/m].
+double head_tension(const DemSystem &system);
+
+struct PullSpec
+{
+  double rate = 5e-3;               ///< clamp speed [m/s]
+  double final_displacement = 0.06; ///< head displacement at the end [m]
+  double record_interval = 5e-4;    ///< head displacement between recorded points [m]
+  /// The clamp's speed rises linearly from 0 to `rate` over this head displacement: a clamp
+  /// started at full speed jerks the sheet, and the inertia and local damping of the nodes and
+  /// grains then give a spurious early peak of head tension (measured on a 400-cluster tank:
+  /// 2.4 x the plateau at 20 mm/s, 1.4 x at 5 mm/s) [m].
+  double ramp_displacement = 2.5e-4;
+  /// Local damping of the sheet's nodes while pulling (the grains keep the system's). Damping a
+  /// node by alpha |F| against its velocity drags a sheet that slides one way through
+  /// fluctuating contacts, whatever the rate: measured on a 400-cluster tank at 5 mm/s with the
+  /// sheet damped like the grains (0.7), T = 1.4 tan(delta) N. 0 by default [-].
+  double sheet_local_damping = 0.0;
+};
+
+/// One recorded point: averages over the interval that ends at head_displacement.
+struct PullPoint
+{
+  double head_displacement = 0.0;   ///< [m]
+  double head_tension = 0.0;        ///< mean clamp reaction along the pull [N/m]
+};
+
+/// Pulls the clamp (node 0 of sheet 0) along +x at spec.rate, with the system's local damping, until spec.final_displacement; after each record
+/// interval calls `record` with the point and the system (for profiles and progress). Throws
+/// std::invalid_argument for a non-positive rate, displacement or interval.
+std::vector<PullPoint> pull_out(DemSystem &system, const PullSpec &spec,
+                                const std::function<void(const PullPoint &, const DemSystem &)> &record = {});
+} // namespace geohybrid::dem
