@@ -55,4 +55,41 @@ void BoundaryConditions::validate(const dealii::Triangulation<dim> &mesh, const 
       check_components(p.pressure.get(), 1, p.boundary_id, "pressure");
     }
 }
+void BoundaryConditions::add_boundary_loads(const dealii::DoFHandler<dim>::active_cell_iterator &cell,
+                                            dealii::FEFaceValues<dim> &face_values,
+                                            dealii::Vector<double> &cell_external) const
+{
+  const dealii::FEValuesExtractors::Vector u(0);
+  const unsigned int n_dofs = cell_external.size();
+  for (const auto face : cell->face_indices())
+    if (cell->at_boundary(face))
+      {
+        const auto id = cell->face(face)->boundary_id();
+        for (const auto &load : tractions)
+          if (load.boundary_id == id)
+            {
+              face_values.reinit(cell, face);
+              for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
+                {
+                  dealii::Tensor<1, dim> t;
+                  for (unsigned int c = 0; c < dim; ++c)
+                    t[c] = load.traction->value(face_values.quadrature_point(q), c);
+                  for (unsigned int i = 0; i < n_dofs; ++i)
+                    cell_external(i) += (face_values[u].value(i, q) * t) * face_values.JxW(q);
+                }
+            }
+        for (const auto &load : pressures)
+          if (load.boundary_id == id)
+            {
+              face_values.reinit(cell, face);
+              for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
+                {
+                  const dealii::Tensor<1, dim> t =
+                    -load.pressure->value(face_values.quadrature_point(q)) * face_values.normal_vector(q);
+                  for (unsigned int i = 0; i < n_dofs; ++i)
+                    cell_external(i) += (face_values[u].value(i, q) * t) * face_values.JxW(q);
+                }
+            }
+      }
+}
 } // namespace geohybrid::fem

@@ -8,6 +8,9 @@
 #include "fem/conventions.h"
 
 #include <deal.II/base/function.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/vector.h>
 #include <deal.II/grid/tria.h>
 
 #include <memory>
@@ -48,5 +51,11 @@ struct BoundaryConditions
   /// Throws std::invalid_argument naming `where` if a boundary id is not on `mesh`, a function
   /// has the wrong number of components, or a displacement constrains no component.
   void validate(const dealii::Triangulation<dim> &mesh, const std::string &where) const;
+
+  /// Adds the work-equivalent nodal forces of the tractions and pressures on the boundary faces
+  /// of `cell` to `cell_external` (the loads' functions at the time last set on them).
+  /// `face_values` needs values, quadrature points, normal vectors and JxW.
+  void add_boundary_loads(const dealii::DoFHandler<dim>::active_cell_iterator &cell,
+                          dealii::FEFaceValues<dim> &face_values, dealii::Vector<double> &cell_external) const;
 };
 } // namespace geohybrid::fem

@@ -334,36 +334,7 @@ void ExplicitSolver::assemble_external_force(double time)
         if (cell->is_locally_owned() && cell->at_boundary())
           {
             cell_external = 0.0;
-            for (const auto face : cell->face_indices())
-              if (cell->at_boundary(face))
-                {
-                  const auto id = cell->face(face)->boundary_id();
-                  for (const auto &load : boundary_conditions_.tractions)
-                    if (load.boundary_id == id)
-                      {
-                        face_values.reinit(cell, face);
-                        for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
-                          {
-                            dealii::Tensor<1, dim> t;
-                            for (unsigned int c = 0; c < dim; ++c)
-                              t[c] = load.traction->value(face_values.quadrature_point(q), c);
-                            for (unsigned int i = 0; i < n_dofs; ++i)
-                              cell_external(i) += (face_values[u].value(i, q) * t) * face_values.JxW(q);
-                          }
-                      }
-                  for (const auto &load : boundary_conditions_.pressures)
-                    if (load.boundary_id == id)
-                      {
-                        face_values.reinit(cell, face);
-                        for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
-                          {
-                            const dealii::Tensor<1, dim> t =
-                              -load.pressure->value(face_values.quadrature_point(q)) * face_values.normal_vector(q);
-                            for (unsigned int i = 0; i < n_dofs; ++i)
-                              cell_external(i) += (face_values[u].value(i, q) * t) * face_values.JxW(q);
-                          }
-                      }
-                }
+            boundary_conditions_.add_boundary_loads(cell, face_values, cell_external);
             cell->get_dof_indices(dof_indices);
             external_force_.add(dof_indices, cell_external);
           }

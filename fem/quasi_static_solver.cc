@@ -166,36 +166,7 @@ void QuasiStaticSolver::assemble(double time, const dealii::AffineConstraints<do
                   cell_tangent(i, j) += (stress_of_i * shape_strains[j]) * JxW;
               }
           }
-        for (const auto face : cell->face_indices())
-          if (cell->at_boundary(face))
-            {
-              const auto id = cell->face(face)->boundary_id();
-              for (const auto &load : boundary_conditions_.tractions)
-                if (load.boundary_id == id)
-                  {
-                    face_values.reinit(cell, face);
-                    for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
-                      {
-                        dealii::Tensor<1, dim> t;
-                        for (unsigned int c = 0; c < dim; ++c)
-                          t[c] = load.traction->value(face_values.quadrature_point(q), c);
-                        for (unsigned int i = 0; i < n_dofs; ++i)
-                          cell_external(i) += (face_values[u].value(i, q) * t) * face_values.JxW(q);
-                      }
-                  }
-              for (const auto &load : boundary_conditions_.pressures)
-                if (load.boundary_id == id)
-                  {
-                    face_values.reinit(cell, face);
-                    for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
-                      {
-                        const dealii::Tensor<1, dim> t =
-                          -load.pressure->value(face_values.quadrature_point(q)) * face_values.normal_vector(q);
-                        for (unsigned int i = 0; i < n_dofs; ++i)
-                          cell_external(i) += (face_values[u].value(i, q) * t) * face_values.JxW(q);
-                      }
-                  }
-            }
+        boundary_conditions_.add_boundary_loads(cell, face_values, cell_external);
         cell->get_dof_indices(dof_indices);
         cell_rhs = cell_external;
         cell_rhs -= cell_internal;
