@@ -5,12 +5,14 @@
 //   geohybrid biaxial FILE.prm             REDF samples in biaxial compression, friction angle, E
 //   geohybrid calibrate FILE.prm           contact friction, kn, ks/kn fitted to target phi', E (nu)
 //   geohybrid pullout FILE.prm             pull-out of a geosynthetic anchored in the INSA tank
+//   geohybrid compare DIR1 DIR2 ... [--output FILE.png]   pull-out curves of result directories in one PNG
 //   geohybrid COMMAND --print-parameters   every parameter of COMMAND with default, unit, doc
 //
 // Input files are read with deal.II's ParameterHandler (.prm or .json). Errors in the input stop
 // the run before anything is written, with a message naming the file and the parameter.
 #include "apps/biaxial_command.h"
 #include "apps/calibrate_command.h"
+#include "apps/compare_command.h"
 #include "apps/dem_command.h"
 #include "apps/pullout_command.h"
 
@@ -21,6 +23,7 @@
 #include <iostream>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -51,6 +54,7 @@ void print_usage(std::ostream &out)
   out << "geohybrid: 2D DEM of soil coupled with a deal.II continuum, for geosynthetic anchorages\n\n"
          "usage: geohybrid COMMAND FILE.prm|FILE.json [--resume]\n"
          "       geohybrid COMMAND --print-parameters   (every parameter, default, unit and meaning)\n"
+         "       geohybrid compare DIR1 DIR2 ... [--output FILE.png]   (pull-out curves in one PNG)\n"
          "       geohybrid --help\n\n"
          "--resume continues the run of FILE from its last checkpoint, OUTPUT/checkpoint.h5\n"
          "(written every 'Simulation/checkpoint interval' seconds and at the end); the end time\n"
@@ -67,6 +71,17 @@ int main(int argc, char **argv)
       print_usage(std::cout);
       return argc < 2 ? 1 : 0;
     }
+  // compare reads result directories, not an input file: its own arguments.
+  if (!std::strcmp(argv[1], "compare"))
+    try
+      {
+        return geohybrid::apps::run_compare_command(std::vector<std::string>(argv + 2, argv + argc));
+      }
+    catch (const std::exception &e)
+      {
+        std::cerr << "geohybrid: error: " << e.what() << '\n';
+        return 1;
+      }
   const auto found = commands().find(argv[1]);
   if (found == commands().end())
     {

@@ -1,0 +1,225 @@
+#include "pullout_problem.h"
+
+#include "fem/constitutive/parameter_check.h"
+#include "fem/tank_mesh.h"
+
+#include <deal.II/base/function_lib.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_generator.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace geohybrid::fem
+{
+void PulloutProblemParameters::validate(const std::string &where) const
+{
+  const auto positive = [&](double value, const char *name, const char *unit) {
+    require_parameter(value > 0.0 && std::isfinite(value), where, name, value, std::string("must be positive ") + unit);
+  };
+  positive(sheet_length, "sheet length L", "[m]");
+  positive(sheet_depth, "sheet depth H", "[m]");
+  positive(sheet_node_spacing, "sheet node spacing", "[m]");
+  require_parameter(element_degree == 1 || element_degree == 2, where, "element degree", element_degree,
+                    "must be 1 (Q1) or 2 (Q2)");
+  positive(soil_density, "soil density", "[kg/m^3]");
+  require_parameter(gravity >= 0.0 && std::isfinite(gravity), where, "gravity", gravity,
+                    "must be zero or positive [m/s^2]");
+  require_parameter(k0 >= 0.0 && std::isfinite(k0), where, "K0", k0,
+                    "must be positive, or 0 for the soil's default (1 - sin phi) [-]");
+  require_parameter(surcharge >= 0.0 && std::isfinite(surcharge), where, "surcharge", surcharge,
+                    "must be zero or positive [Pa]");
+  positive(pull_rate, "pull rate", "[m/s]");
+  positive(final_displacement, "final displacement", "[m]");
+  require_parameter(output_interval > 0.0 && output_interval <= final_displacement, where, "output interval",
+                    output_interval, "must lie in (0, final displacement] [m]");
+  require_parameter(local_damping >= 0.0 && local_damping < 1.0, where, "local damping", local_damping,
+                    "must lie in [0, 1) [-]");
+  require_parameter(safety_factor > 0.0 && safety_factor <= 1.0, where, "safety factor", safety_factor,
+                    "must lie in (0, 1] [-]");
+  if (!snapshot_directory.empty())
+    positive(snapshot_interval, "snapshot interval", "when a snapshot directory is given [m]");
+  sheet.validate(where + ": sheet");
+}
+
+namespace
+{
+/// The bounding box of the mesh's vertices, the same on every rank.
+std::pair<dealii::Point<dim>, dealii::Point<dim>> mesh_bounds(const dealii::parallel::distributed::Triangulation<dim> &mesh)
+{
+  double lo[dim], hi[dim];
+  for (unsigned int d = 0; d < dim; ++d)
+    {
+      lo[d] = std::numeric_limits<double>::max();
+      hi[d] = -std::numeric_limits<double>::max();
+    }
+  for (const auto &cell : mesh.active_cell_iterators())
+    if (cell->is_locally_owned())
+      for (const unsigned int v : cell->vertex_indices())
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lo[d] = std::min(lo[d], cell->vertex(v)[d]);
+            hi[d] = std::max(hi[d], cell->vertex(v)[d]);
+          }
+  const MPI_Comm comm = mesh.get_communicator();
+  dealii::Point<dim> p_lo, p_hi;
+  for (unsigned int d = 0; d < dim; ++d)
+    {
+      p_lo[d] = dealii::Utilities::MPI::min(lo[d], comm);
+      p_hi[d] = dealii::Utilities::MPI::max(hi[d], comm);
+    }
+  return {p_lo, p_hi};
+}
+} // namespace
+
+PulloutProblem::PulloutProblem(const dealii::parallel::distributed::Triangulation<dim> &mesh,
+                               const PulloutProblemParameters &parameters, const std::string &where)
+  : parameters_(parameters)
+{
+  parameters_.validate(where);
+  const SoilModel soil(parameters_.soil, where + ": soil");
+
+  const auto [lo, hi] = mesh_bounds(mesh);
+  tank_length_ = hi[0] - lo[0];
+  tank_height_ = hi[1] - lo[1];
+  x_front_ = hi[0];
+  y_top_ = hi[1];
+  const double tolerance = 1e-9 * std::max(tank_length_, tank_height_);
+  if (parameters_.sheet_length > tank_length_ + tolerance)
+    {
+      std::ostringstream message;
+      message << where << ": parameter 'sheet length L' = " << parameters_.sheet_length
+              << " m is longer than the tank (" << tank_length_ << " m, from the mesh)";
+      throw std::invalid_argument(message.str());
+    }
+  if (parameters_.sheet_depth >= tank_height_ - tolerance)
+    {
+      std::ostringstream message;
+      message << where << ": parameter 'sheet depth H' = " << parameters_.sheet_depth
+              << " m puts the sheet at or below the tank's bottom (the soil is " << tank_height_
+              << " m high, from the mesh)";
+      throw std::invalid_argument(message.str());
+    }
+
+  // Bottom fixed, smooth walls, the surcharge on top: the geostatic state is then in equilibrium.
+  BoundaryConditions bc;
+  bc.displacements = {{tank_boundary::bottom, true, true, nullptr},
+                      {tank_boundary::back_wall, true, false, nullptr},
+                      {tank_boundary::front_wall, true, false, nullptr}};
+  if (parameters_.surcharge > 0.0)
+    bc.pressures = {{tank_boundary::top, std::make_shared<dealii::Functions::ConstantFunction<dim>>(parameters_.surcharge)}};
+
+  ExplicitSettings settings;
+  settings.element_degree = parameters_.element_degree;
+  settings.density = parameters_.soil_density;
+  settings.gravity[1] = -parameters_.gravity;
+  settings.safety_factor = parameters_.safety_factor;
+  settings.damping.local = parameters_.local_damping;
+  solver_ = std::make_unique<ExplicitSolver>(mesh, soil, bc, settings);
+
+  geostatic_.surface_elevation = y_top_;
+  geostatic_.unit_weight = parameters_.soil_density * parameters_.gravity;
+  geostatic_.k0 = parameters_.k0 > 0.0 ? parameters_.k0 : soil.default_k0();
+  geostatic_.surcharge = parameters_.surcharge;
+  geostatic_.validate(where + ": geostatic stress");
+  solver_->set_initial_stress(geostatic_);
+
+  // The sheet from the front wall (node 0, the clamp) back over L, at depth H.
+  const double y_sheet = y_top_ - parameters_.sheet_depth;
+  const auto n_segments = static_cast<unsigned int>(
+    std::max(1.0, std::ceil(parameters_.sheet_length / parameters_.sheet_node_spacing * (1.0 - 1e-12))));
+  std::vector<dealii::Point<dim>> nodes;
+  for (unsigned int k = 0; k <= n_segments; ++k)
+    nodes.emplace_back(x_front_ - parameters_.sheet_length * k / n_segments, y_sheet);
+
+  TrussSheetParameters sheet_parameters = parameters_.sheet;
+  if (parameters_.automatic_mass_scaling)
+    {
+      // omega of a node scales as 1/sqrt(m): the mass must grow by (dt / dt_sheet)^2; 8 times that
+      // (see the header). The sheet's inertia does not matter in a quasi-static pull (the rate
+      // check in the tests shows it).
+      sheet_parameters.mass_scaling = 1.0;
+      const EmbeddedSheet unscaled(solver_->space(), TrussSheet(nodes, sheet_parameters, where + ": sheet"), {},
+                                   where + ": sheet");
+      sheet_parameters.mass_scaling =
+        std::max(1.0, 8.0 * std::pow(solver_->time_step() / unscaled.stable_time_step(), 2));
+    }
+  const double rate = parameters_.pull_rate;
+  clamp_node_ = 0;
+  solver_->attach_sheet(TrussSheet(nodes, sheet_parameters, where + ": sheet"),
+                        {{clamp_node_, [rate](double t) { return dealii::Tensor<1, dim>({rate * t, 0.0}); }}});
+}
+
+PulloutResult PulloutProblem::run()
+{
+  PulloutResult result;
+  result.tank_length = tank_length_;
+  result.tank_height = tank_height_;
+  result.time_step = solver_->time_step();
+  result.vertical_stress_at_sheet = -geostatic_.stress_at(dealii::Point<dim>(x_front_, y_top_ - parameters_.sheet_depth))[1][1];
+  const EmbeddedSheet &sheet = *solver_->sheet();
+  result.sheet_mass_scaling = sheet.sheet().parameters().mass_scaling;
+
+  // The sheet is laid unstretched with an unloaded interface: the first point is the state before
+  // the pull, as computed (zero up to round-off).
+  result.curve.push_back({sheet.displacements()[clamp_node_][0], sheet.clamp_force(0)[0]});
+
+  const double end_time = parameters_.final_displacement / parameters_.pull_rate;
+  const double interval = parameters_.output_interval;
+  double next_output = interval, next_snapshot = parameters_.snapshot_interval;
+  double sum_displacement = 0.0, sum_tension = 0.0;
+  unsigned int n_summed = 0, n_snapshots = 0;
+  const auto write_snapshot = [&]() {
+    const std::string record = solver_->write_vtu(parameters_.snapshot_directory, "pullout", n_snapshots++);
+    result.snapshots.push_back(parameters_.snapshot_directory + "/" + record);
+  };
+  if (!parameters_.snapshot_directory.empty())
+    write_snapshot();
+
+  while (solver_->time() < end_time * (1.0 - 1e-12))
+    {
+      solver_->advance_to(std::min(solver_->time() + solver_->time_step(), end_time));
+      const double head = sheet.displacements()[clamp_node_][0];
+      sum_displacement += head;
+      sum_tension += sheet.clamp_force(0)[0];
+      ++n_summed;
+      const bool last = solver_->time() >= end_time * (1.0 - 1e-12);
+      if (head >= next_output * (1.0 - 1e-9) || last)
+        {
+          result.curve.push_back({sum_displacement / n_summed, sum_tension / n_summed});
+          sum_displacement = sum_tension = 0.0;
+          n_summed = 0;
+          next_output += interval;
+        }
+      if (!parameters_.snapshot_directory.empty() && (head >= next_snapshot * (1.0 - 1e-9) || last))
+        {
+          write_snapshot();
+          next_snapshot += parameters_.snapshot_interval;
+        }
+    }
+  result.n_steps = solver_->n_steps();
+  for (const auto &p : result.curve)
+    result.max_head_tension = std::max(result.max_head_tension, p.head_tension);
+  return result;
+}
+
+void make_rectangular_tank(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,
+                           unsigned int nx, unsigned int ny)
+{
+  dealii::GridGenerator::subdivided_hyper_rectangle(mesh, {nx, ny}, dealii::Point<dim>(0, 0),
+                                                    dealii::Point<dim>(length, height), true);
+  // colorize: 0 left, 1 right, 2 bottom, 3 top -> the tank's ids.
+  for (const auto &cell : mesh.active_cell_iterators())
+    for (const auto &face : cell->face_iterators())
+      if (face->at_boundary())
+        {
+          const auto id = face->boundary_id();
+          face->set_boundary_id(id == 0   ? tank_boundary::back_wall
+                                : id == 1 ? tank_boundary::front_wall
+                                : id == 2 ? tank_boundary::bottom
+                                          : tank_boundary::top);
+        }
+}
+} // namespace geohybrid::fem

@@ -1,0 +1,125 @@
+#pragma once
+// The pull-out test of a geosynthetic sheet in continuum soil (issue 5, "pure-FEM pull-out"): the
+// INSA tank of the DEM pull-out (issue 4) with the soil as a deal.II continuum, run with the
+// explicit solver because that is the one the sheet's frictional interface lives in.
+//
+// The set-up, in the tank's frame (fem/tank_mesh.h: x from the back wall to the front wall, y up,
+// boundary ids 1 bottom, 2 front wall, 3 top, 4 back wall):
+// - the soil starts at its geostatic stress (fem/geostatic_stress.h: sigma_v = q + gamma (y_top - y),
+//   sigma_h = K0 sigma_v) under gravity, so nothing moves before the pull;
+// - the bottom is fixed, the back and front walls are smooth rollers (u_x = 0), the top is free or
+//   carries the surcharge q as a pressure;
+// - the sheet (fem/truss_sheet.h) lies at depth H below the top, from the front wall back into the
+//   tank over its length L, tied to the soil by the Mohr-Coulomb interface of
+//   fem/sheet_interface.h; its node at the front wall is the clamp;
+// - the clamp moves in +x at a constant rate (the pull), the soil and sheet are integrated by
+//   central differences with local damping (a quasi-static run: the rate and the damping are
+//   chosen so that halving the rate leaves the curve unchanged, tests/test_fem_pullout.cc);
+//   the default local damping is 0.3, not PFC's 0.7: local damping also acts on the sheet's nodes,
+//   and on a sheet that slides while its nodes oscillate it adds a drag the clamp has to pull
+//   (measured on the small tank of the test: plateau +2.6 % over the interface's own resistance at
+//   0.7 with the sheet's mass scaled 2 times its stability limit, +1.4 % at 0.7 and 8 times,
+//   +0.2 to +0.3 % at 0.3 and 8 times);
+// - the head tension T is the force that holds the clamp [N/m of width], recorded against the
+//   clamp's displacement as the mean over each output interval (the mass-scaled sheet makes the
+//   force at a single step oscillate by about 1-2 %, fem/README.md).
+//
+// What the continuum leaves out, on purpose: the walls are frictionless (the DEM tank's walls have
+// 28 degrees of friction), the strain is small, and the sheet outside the tank (clamp to front
+// wall) is not modelled.
+#include "fem/constitutive/soil_model.h"
+#include "fem/explicit_solver.h"
+#include "fem/truss_sheet.h"
+
+#include <deal.II/distributed/tria.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace geohybrid::fem
+{
+struct PulloutProblemParameters
+{
+  // Geometry: the tank's size comes from the mesh.
+  double sheet_length = 1.0;         ///< L, from the front wall into the tank, in (0, tank length] [m]
+  double sheet_depth = 0.4;          ///< H, below the top surface, in (0, tank height) [m]
+  double sheet_node_spacing = 0.0125; ///< the truss segments' length at most, > 0 [m]
+
+  // Soil.
+  SoilParameters soil;
+  unsigned int element_degree = 1; ///< 1 (Q1) or 2 (Q2)
+  double soil_density = 1549.0;    ///< bulk density, > 0 (15.2 kN/m^3 over 9.81 m/s^2) [kg/m^3]
+  double gravity = 9.81;           ///< g >= 0 [m/s^2]
+  double k0 = 0.0;                 ///< sigma_h / sigma_v at rest; 0 takes the soil's default (1 - sin phi) [-]
+  double surcharge = 0.0;          ///< q >= 0 on the top surface [Pa]
+
+  // Sheet: J, areal mass, the interface (delta, c_i, k_n, k_s). Its `mass_scaling` is used as
+  // given unless `automatic_mass_scaling` is set, which takes the smallest factor that keeps the
+  // sheet's nodes stable at the soil's step, times 8 (a lighter sheet oscillates more and drags
+  // more through the local damping, a heavier one sloshes: 2 and 32 times both gave a plateau
+  // 2.5 % above the interface's resistance on the test's tank, 8 times 1.4 %, at damping 0.7).
+  TrussSheetParameters sheet;
+  bool automatic_mass_scaling = true;
+
+  // Pull.
+  double pull_rate = 0.004;          ///< clamp velocity, > 0 [m/s]
+  double final_displacement = 0.06;  ///< head displacement at the end, > 0 [m]
+  double output_interval = 0.5e-3;   ///< head displacement between curve points, in (0, final] [m]
+  double local_damping = 0.3;        ///< alpha_l of the explicit solver, in [0, 1) (see above) [-]
+  double safety_factor = 0.8;        ///< on the soil's critical step, in (0, 1] [-]
+
+  // Snapshots (VTU of the soil): none when the directory is empty.
+  std::string snapshot_directory;
+  double snapshot_interval = 0.0; ///< head displacement between snapshots, > 0 if a directory is given [m]
+
+  /// Throws std::invalid_argument naming `where` and the parameter.
+  void validate(const std::string &where) const;
+};
+
+struct PulloutCurvePoint
+{
+  double head_displacement = 0.0; ///< the clamp's displacement along the pull [m]
+  double head_tension = 0.0;      ///< the force holding the clamp [N/m]
+};
+
+struct PulloutResult
+{
+  std::vector<PulloutCurvePoint> curve; ///< starts at the unloaded sheet (0, 0)
+  double max_head_tension = 0.0;        ///< T_max over the curve [N/m]
+  double vertical_stress_at_sheet = 0.0; ///< geostatic sigma_v = q + gamma H, compressive positive [Pa]
+  double tank_length = 0.0, tank_height = 0.0; ///< from the mesh [m]
+  double time_step = 0.0;               ///< [s]
+  double sheet_mass_scaling = 0.0;      ///< the factor used [-]
+  unsigned int n_steps = 0;
+  std::vector<std::string> snapshots;   ///< PVTU records written (snapshot directory/pullout_NNNN.pvtu)
+};
+
+class PulloutProblem
+{
+public:
+  /// `mesh` is the tank (boundary ids 1 to 4, fem/tank_mesh.h) and must outlive the problem.
+  /// Throws std::invalid_argument naming `where` and the parameter for bad input or a sheet that
+  /// does not fit the tank. Collective.
+  PulloutProblem(const dealii::parallel::distributed::Triangulation<dim> &mesh,
+                 const PulloutProblemParameters &parameters, const std::string &where = "pull-out");
+
+  /// Pulls the clamp to the final displacement. Collective; every rank returns the same curve.
+  PulloutResult run();
+
+  const ExplicitSolver &solver() const { return *solver_; }
+
+private:
+  PulloutProblemParameters parameters_;
+  double tank_length_ = 0.0, tank_height_ = 0.0, x_front_ = 0.0, y_top_ = 0.0;
+  GeostaticStress geostatic_;
+  std::unique_ptr<ExplicitSolver> solver_;
+  std::size_t clamp_node_ = 0;
+};
+
+/// A rectangular tank [0, length] x [0, height] of nx x ny cells with the tank meshes' boundary
+/// ids (1 bottom, 2 front wall at x = length, 3 top, 4 back wall at x = 0), for tests and quick
+/// studies without a .msh file. Collective.
+void make_rectangular_tank(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,
+                           unsigned int nx, unsigned int ny);
+} // namespace geohybrid::fem
