@@ -78,7 +78,11 @@ public:
 
   /// Advances one contact by one step: updates `state` and returns the forces.
   /// A contact with overlap <= 0 that is not bonded carries no force and loses its history.
+  /// `with_dashpot = false` is for a law known to have none (has_dashpot() false): the same
+  /// numbers, bit for bit, with the dashpot's arithmetic compiled out of a hot loop.
+  template <bool with_dashpot = true>
   inline ContactForce evaluate(const ContactKinematics &k, ContactState &state) const;
+  bool has_dashpot() const { return damping_ratio_ > 0.0; }
 
   /// Elastic energy stored in a contact with elastic normal force fn and tangential force ft.
   double elastic_energy(double fn, double ft) const
@@ -93,6 +97,7 @@ private:
   bool   bonding_enabled_;
 };
 
+template <bool with_dashpot>
 inline ContactForce LinearContactLaw::evaluate(const ContactKinematics &k, ContactState &state) const
 {
   ContactForce f;
@@ -135,7 +140,7 @@ inline ContactForce LinearContactLaw::evaluate(const ContactKinematics &k, Conta
     }
   // Dashpot 2 zeta sqrt(m* kn) (d overlap / dt), m* = 1 / inverse_mass_sum; the square root is
   // only taken when there is a dashpot (the inner loop of a run without one skips it).
-  const double dashpot = (damping_ratio_ > 0.0 && k.inverse_mass_sum > 0.0)
+  const double dashpot = (with_dashpot && damping_ratio_ > 0.0 && k.inverse_mass_sum > 0.0)
                            ? 2.0 * damping_ratio_ * std::sqrt(kn / k.inverse_mass_sum) * k.overlap_rate
                            : 0.0;
   f.normal_force       = f.elastic_normal + dashpot;

@@ -284,21 +284,38 @@ void DemSystem::kick_and_drift()
   const double dt = time_step_, half = 0.5 * dt;
   const std::size_t nb = p.n_bodies();
   const bool book_damping = settings_.track_energy && settings_.local_damping > 0.0;
-#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
-  for (std::size_t b = 0; b < nb; ++b)
+  if (settings_.local_damping == 0.0)
     {
-      const double vx0 = p.vx[b], vy0 = p.vy[b], w0 = p.omega[b];
-      // (damping_* are zero without local damping: adding them changes nothing)
-      p.vx[b] += half * (p.fx[b] + damping_fx_[b]) * p.inverse_mass[b];
-      p.vy[b] += half * (p.fy[b] + damping_fy_[b]) * p.inverse_mass[b];
-      p.omega[b] += half * (p.torque[b] + damping_torque_[b]) * p.inverse_inertia[b];
-      if (book_damping) // work of the damping force during this half kick (exact for a constant force)
-        body_scratch_[b] = 0.5 * half *
-                           (damping_fx_[b] * (vx0 + p.vx[b]) + damping_fy_[b] * (vy0 + p.vy[b]) +
-                            damping_torque_[b] * (w0 + p.omega[b]));
-      p.x[b] += dt * p.vx[b];
-      p.y[b] += dt * p.vy[b];
-      p.rotation[b] += dt * p.omega[b];
+      // No local damping: damping_* are zero (adding them would change no bit), so this loop
+      // does not stream them.
+#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
+      for (std::size_t b = 0; b < nb; ++b)
+        {
+          p.vx[b] += half * (p.fx[b] + 0.0) * p.inverse_mass[b];
+          p.vy[b] += half * (p.fy[b] + 0.0) * p.inverse_mass[b];
+          p.omega[b] += half * (p.torque[b] + 0.0) * p.inverse_inertia[b];
+          p.x[b] += dt * p.vx[b];
+          p.y[b] += dt * p.vy[b];
+          p.rotation[b] += dt * p.omega[b];
+        }
+    }
+  else
+    {
+#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
+      for (std::size_t b = 0; b < nb; ++b)
+        {
+          const double vx0 = p.vx[b], vy0 = p.vy[b], w0 = p.omega[b];
+          p.vx[b] += half * (p.fx[b] + damping_fx_[b]) * p.inverse_mass[b];
+          p.vy[b] += half * (p.fy[b] + damping_fy_[b]) * p.inverse_mass[b];
+          p.omega[b] += half * (p.torque[b] + damping_torque_[b]) * p.inverse_inertia[b];
+          if (book_damping) // work of the damping force during this half kick (exact for a constant force)
+            body_scratch_[b] = 0.5 * half *
+                               (damping_fx_[b] * (vx0 + p.vx[b]) + damping_fy_[b] * (vy0 + p.vy[b]) +
+                                damping_torque_[b] * (w0 + p.omega[b]));
+          p.x[b] += dt * p.vx[b];
+          p.y[b] += dt * p.vy[b];
+          p.rotation[b] += dt * p.omega[b];
+        }
     }
   if (book_damping)
     accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
@@ -372,12 +389,23 @@ void DemSystem::rebuild_if_needed()
 
 void DemSystem::compute_pair_forces()
 {
+  // The energy bookkeeping and the dashpot are fixed for a run: the loop is compiled for each
+  // combination, so that a run without them does none of their work per contact.
+  const bool dashpot = particle_law_.has_dashpot();
+  if (settings_.track_energy)
+    dashpot ? compute_pair_forces_for<true, true>() : compute_pair_forces_for<true, false>();
+  else
+    dashpot ? compute_pair_forces_for<false, true>() : compute_pair_forces_for<false, false>();
+}
+
+template <bool track_energy, bool with_dashpot>
+void DemSystem::compute_pair_forces_for()
+{
   ParticleSet &p = particles_;
   const LinearContactLaw &law = particle_law_;
   PairContacts &c = pairs_;
   const double dt = time_step_;
   const std::size_t nb = p.n_bodies();
-  const bool track_energy = settings_.track_energy;
 
   // One contact: the force on disc i and the moments on both bodies, stored per pair.
   // Returns false for a pair that is apart (and not bonded): its force is zero.
@@ -389,8 +417,10 @@ void DemSystem::compute_pair_forces()
     const double distance2 = dx * dx + dy * dy;
     if (distance2 >= radius_sum * radius_sum && !state.bonded && !state.touching)
       {
-        c.force_x[q] = c.force_y[q] = c.torque_i[q] = c.torque_j[q] = c.elastic_normal_force[q] = 0.0;
-        if (track_energy)
+        // Apart now and at the last evaluation, which left its force at zero (a separating
+        // contact's force is zero, and a rebuild zeroes new pairs): nothing to store. Only the
+        // dissipated work of the separating step is cleared.
+        if constexpr (track_energy)
           c.friction_work[q] = c.viscous_work[q] = 0.0;
         return false;
       }
@@ -407,14 +437,14 @@ void DemSystem::compute_pair_forces()
     const Vec2 v_rel = v_j - v_i;
     const ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt,
                               p.inverse_mass[bi] + p.inverse_mass[bj], dt};
-    const ContactForce f = law.evaluate(k, state);
+    const ContactForce f = law.evaluate<with_dashpot>(k, state);
     const Vec2 force_on_i = -f.normal_force * normal + f.tangential_force * tangent;
     c.force_x[q] = force_on_i.x();
     c.force_y[q] = force_on_i.y();
     c.torque_i[q] = cross(lever_i, force_on_i);
     c.torque_j[q] = -cross(lever_j, force_on_i);
     c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
-    if (track_energy)
+    if constexpr (track_energy)
       {
         c.friction_work[q] = f.friction_work;
         c.viscous_work[q] = f.viscous_work;

@@ -192,6 +192,8 @@ private:
   void move_walls();
   void rebuild_if_needed();
   void compute_pair_forces();
+  template <bool track_energy, bool with_dashpot>
+  void compute_pair_forces_for();
   void compute_wall_forces();
   void gather_forces_and_kick();
   void check_finite() const;

@@ -165,30 +165,37 @@ void ParticleSet::fix_body(std::size_t b)
 double ParticleSet::update_disc_positions(int n_threads, const SoaVector<double> *reference_x,
                                           const SoaVector<double> *reference_y)
 {
-  const std::size_t nd = disc_radius.size();
+  const std::size_t nb = x.size(), nd = disc_radius.size();
   const bool measure = reference_x && reference_y && reference_x->size() == nd && reference_y->size() == nd;
   double max_move2 = 0.0;
+  // A loop over bodies, so that a cluster's rotation is turned into cos and sin once for all
+  // its discs (sincos is the dearest operation here: a third of a cluster system's step when
+  // taken per disc). A single disc at its body's centre of mass needs no rotation at all.
 #pragma omp parallel for schedule(static) num_threads(n_threads) reduction(max : max_move2)
-  for (std::size_t d = 0; d < nd; ++d)
+  for (std::size_t b = 0; b < nb; ++b)
     {
-      const std::uint32_t b = disc_body[d];
-      const double ox = disc_offset_x[d], oy = disc_offset_y[d];
-      if (ox == 0.0 && oy == 0.0)
+      const std::uint32_t begin = first_disc[b], end = begin + n_discs[b];
+      if (end == begin + 1 && disc_offset_x[begin] == 0.0 && disc_offset_y[begin] == 0.0)
         {
-          disc_x[d] = x[b];
-          disc_y[d] = y[b];
+          disc_x[begin] = x[b];
+          disc_y[begin] = y[b];
         }
       else
         {
           const double c = std::cos(rotation[b]), s = std::sin(rotation[b]);
-          disc_x[d] = x[b] + c * ox - s * oy;
-          disc_y[d] = y[b] + s * ox + c * oy;
+          for (std::uint32_t d = begin; d < end; ++d)
+            {
+              const double ox = disc_offset_x[d], oy = disc_offset_y[d];
+              disc_x[d] = x[b] + c * ox - s * oy;
+              disc_y[d] = y[b] + s * ox + c * oy;
+            }
         }
       if (measure)
-        {
-          const double dx = disc_x[d] - (*reference_x)[d], dy = disc_y[d] - (*reference_y)[d];
-          max_move2 = std::max(max_move2, dx * dx + dy * dy);
-        }
+        for (std::uint32_t d = begin; d < end; ++d)
+          {
+            const double dx = disc_x[d] - (*reference_x)[d], dy = disc_y[d] - (*reference_y)[d];
+            max_move2 = std::max(max_move2, dx * dx + dy * dy);
+          }
     }
   return max_move2;
 }
