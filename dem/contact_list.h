@@ -21,7 +21,8 @@ struct PairContacts
 
   // Results of the last force evaluation.
   SoaVector<double> force_x, force_y;      ///< force on disc i [N/m]
-  SoaVector<double> torque_i, torque_j;    ///< moments about each body's centre of mass [N]
+  SoaVector<double> torque_i, torque_j;    ///< moments about each body's centre of mass [N]; kept only
+                                           ///< when the loop runs in several chunks (shared bodies)
   SoaVector<double> elastic_normal_force;  ///< kn * overlap (0 when apart) [N/m]
   SoaVector<double> friction_work;         ///< energy dissipated by slip in the last step [J/m]
   SoaVector<double> viscous_work;          ///< energy dissipated by the dashpot in the last step [J/m]

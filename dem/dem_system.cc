@@ -407,9 +407,10 @@ void DemSystem::compute_pair_forces_for()
   const double dt = time_step_;
   const std::size_t nb = p.n_bodies();
 
-  // One contact: the force on disc i and the moments on both bodies, stored per pair.
+  // One contact: the force on disc i, stored per pair, and the moments on both bodies.
   // Returns false for a pair that is apart (and not bonded): its force is zero.
-  const auto evaluate = [&](std::size_t q, std::uint64_t &broken) __attribute__((always_inline)) -> bool {
+  const auto evaluate = [&](std::size_t q, std::uint64_t &broken, double &moment_i,
+                            double &moment_j) __attribute__((always_inline)) -> bool {
     const std::uint32_t i = c.disc_i[q], j = c.disc_j[q];
     ContactState &state = c.state[q];
     const double dx = p.disc_x[j] - p.disc_x[i], dy = p.disc_y[j] - p.disc_y[i];
@@ -441,8 +442,8 @@ void DemSystem::compute_pair_forces_for()
     const Vec2 force_on_i = -f.normal_force * normal + f.tangential_force * tangent;
     c.force_x[q] = force_on_i.x();
     c.force_y[q] = force_on_i.y();
-    c.torque_i[q] = cross(lever_i, force_on_i);
-    c.torque_j[q] = -cross(lever_j, force_on_i);
+    moment_i = cross(lever_i, force_on_i);
+    moment_j = -cross(lever_j, force_on_i);
     c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
     if constexpr (track_energy)
       {
@@ -471,21 +472,29 @@ void DemSystem::compute_pair_forces_for()
   const auto run_chunk = [&](std::size_t k, std::uint64_t &broken, auto only_chunk) __attribute__((always_inline)) {
     const std::size_t begin = c.chunk_begin(k), end = c.chunk_begin(k + 1);
     constexpr bool first_chunk = decltype(only_chunk)::value;
+    double moment_i, moment_j;
     for (std::size_t q = begin; q < end; ++q)
-      if (evaluate(q, broken))
+      if (evaluate(q, broken, moment_i, moment_j))
         {
+          // The moments are stored only for the bodies shared between chunks, which are
+          // completed from the stored values (the one chunk of a single thread has none).
+          if constexpr (!first_chunk)
+            {
+              c.torque_i[q] = moment_i;
+              c.torque_j[q] = moment_j;
+            }
           const std::uint32_t bi = p.disc_body[c.disc_i[q]], bj = p.disc_body[c.disc_j[q]];
           if (first_chunk || c.body_first_pair[bi] >= begin)
             {
               p.fx[bi] += c.force_x[q];
               p.fy[bi] += c.force_y[q];
-              p.torque[bi] += c.torque_i[q];
+              p.torque[bi] += moment_i;
             }
           if (first_chunk || c.body_first_pair[bj] >= begin)
             {
               p.fx[bj] -= c.force_x[q];
               p.fy[bj] -= c.force_y[q];
-              p.torque[bj] += c.torque_j[q];
+              p.torque[bj] += moment_j;
             }
         }
   };
