@@ -13,12 +13,18 @@ struct PlotSeries
   int x_column, y_column;     ///< 1-based
   std::string label;
   double x_scale = 1.0, y_scale = 1.0; ///< e.g. 1e-3 to plot Pa as kPa
+  std::string style = "lines lw 2";    ///< gnuplot's 'with' clause
+  /// Further columns after x and y, each scaled by y_scale (e.g. the upper bound of a band for
+  /// 'filledcurves', or dx, dy for 'vectors', then scaled as x and y: see scale_extra_as_x_y).
+  std::vector<int> extra_columns = {};
+  bool scale_extra_as_x_y = false; ///< extra columns scaled x, y, x, y, ... instead of all by y_scale
 };
 
 struct PlotPanel
 {
   std::string x_label, y_label;
   std::vector<PlotSeries> series;
+  std::string settings = ""; ///< gnuplot commands before the panel's plot (e.g. "set size ratio -1")
 };
 
 /// Writes PNG.gp and runs gnuplot to make PNG with the panels stacked vertically. Returns false

@@ -265,13 +265,15 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where)
 }
 } // namespace
 
-int run_pullout_command(const std::string &input_file, bool resume)
+int run_pullout_command(const std::string &input_file, bool resume, const ParameterOverrides &overrides)
 {
   if (resume)
     throw std::invalid_argument("geohybrid pullout: --resume is not supported yet; rerun the input");
   ParameterHandler prm;
   declare_pullout_parameters(prm);
   parse_input_file(prm, input_file);
+  for (const auto &[path, value] : overrides)
+    set_parameter(prm, path, value);
   const std::string where = "input file '" + input_file + "'";
   const std::string mode = prm.get("mode");
   if (mode != "dem")
