@@ -25,8 +25,7 @@ bool plot_png(const std::filesystem::path &png, const std::string &title, const 
             gp << (k ? ", " : "") << "'" << s.csv.string() << "' using ($" << s.x_column << "*" << s.x_scale << "):($"
                << s.y_column << "*" << s.y_scale << ")";
             for (std::size_t e = 0; e < s.extra_columns.size(); ++e)
-              gp << ":($" << s.extra_columns[e] << "*" << (s.scale_extra_as_x_y && e % 2 == 0 ? s.x_scale : s.y_scale)
-                 << ")";
+              gp << ":($" << s.extra_columns[e] << "*" << (e < s.extra_scales.size() ? s.extra_scales[e] : s.y_scale) << ")";
             gp << " with " << s.style << " title '" << s.label << "'";
           }
         gp << "\n";

@@ -14,10 +14,10 @@ struct PlotSeries
   std::string label;
   double x_scale = 1.0, y_scale = 1.0; ///< e.g. 1e-3 to plot Pa as kPa
   std::string style = "lines lw 2";    ///< gnuplot's 'with' clause
-  /// Further columns after x and y, each scaled by y_scale (e.g. the upper bound of a band for
-  /// 'filledcurves', or dx, dy for 'vectors', then scaled as x and y: see scale_extra_as_x_y).
+  /// Further columns after x and y (e.g. the upper bound of a band for 'filledcurves', or dx, dy
+  /// and a line width for 'vectors'), each scaled by its extra_scales entry, y_scale if none.
   std::vector<int> extra_columns = {};
-  bool scale_extra_as_x_y = false; ///< extra columns scaled x, y, x, y, ... instead of all by y_scale
+  std::vector<double> extra_scales = {};
 };
 
 struct PlotPanel

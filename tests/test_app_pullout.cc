@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -239,6 +240,57 @@ TEST(PullOutCommand, SeedsAverageTheCurves)
   if (std::system("command -v gnuplot > /dev/null 2>&1") == 0)
     {
       EXPECT_TRUE(fs::exists(out / "pullout_curve.png"));
+    }
+  fs::remove_all(d);
+}
+
+// The soil's fields (Figures 10-12) at two head displacements of the tiny run: the grains'
+// displacements since the start of the pull (x - x0, the same start in both files), the force
+// network, three snapshots (the start and the two displacements) and the surface uplift, whose
+// grains rise as those grains do in the displacement field.
+TEST(PullOutCommand, WritesTheFieldsAtChosenDisplacements)
+{
+  const fs::path d = test_directory();
+  const std::string input = write_tiny_input(d);
+  std::ofstream(input, std::ios::app) << "subsection Output\n  set field outputs at = 0.001, 0.0005\nend\n";
+  ASSERT_EQ(error_of(input), "");
+  const fs::path out = d / "out";
+  const auto half = numbers_of(out / "grain_displacements_u0.5mm.csv"),
+             full = numbers_of(out / "grain_displacements_u1mm.csv");
+  EXPECT_EQ(lines_of(out / "grain_displacements_u1mm.csv")[0],
+            "body_id,x0_m,y0_m,x_m,y_m,dx_m,dy_m,vx_m_per_s,vy_m_per_s");
+  ASSERT_EQ(half.size(), 400u);
+  ASSERT_EQ(full.size(), 400u);
+  double largest = 0.0;
+  for (std::size_t b = 0; b < full.size(); ++b)
+    {
+      ASSERT_EQ(full[b].size(), 9u);
+      EXPECT_EQ(full[b][0], half[b][0]); // the same body
+      EXPECT_EQ(full[b][1], half[b][1]); // from the same start
+      EXPECT_EQ(full[b][2], half[b][2]);
+      EXPECT_NEAR(full[b][5], full[b][3] - full[b][1], 1e-12) << "body " << full[b][0];
+      EXPECT_NEAR(full[b][6], full[b][4] - full[b][2], 1e-12) << "body " << full[b][0];
+      largest = std::max(largest, std::hypot(full[b][5], full[b][6]));
+    }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LT(largest, 0.001); // no grain moves farther than the head
+  const auto network = numbers_of(out / "force_network_u1mm.csv");
+  EXPECT_GT(network.size(), 400u); // a connected packing: more contacts than grains
+  for (const auto &chain : network)
+    EXPECT_GE(chain[4], 0.0);
+  std::stringstream xdmf;
+  xdmf << std::ifstream(out / "pullout_fields.xdmf").rdbuf();
+  EXPECT_NE(xdmf.str().find("snapshot_000002"), std::string::npos);
+  EXPECT_EQ(xdmf.str().find("snapshot_000003"), std::string::npos);
+  EXPECT_EQ(lines_of(out / "surface_uplift.csv")[0], "body_id,x_m,surface_y_m,uplift_m_at_0.5mm,uplift_m_at_1mm");
+  const auto surface = numbers_of(out / "surface_uplift.csv");
+  EXPECT_GT(surface.size(), 8u); // strips of two discs (about 11 mm) across 0.16 m
+  for (const auto &point : surface)
+    {
+      const auto grain = std::find_if(full.begin(), full.end(), [&](const auto &row) { return row[0] == point[0]; });
+      ASSERT_NE(grain, full.end());
+      EXPECT_NEAR(point[4], (*grain)[6], 1e-12);
+      EXPECT_GT(point[2], 0.08); // the surface of a 0.1 m fill
     }
   fs::remove_all(d);
 }

@@ -3,6 +3,7 @@
 // laid at its depth and pulled a short distance: the head tension rises to a plateau set by the
 // interface friction on both faces of the sheet.
 #include "dem/measurements.h"
+#include "dem/pullout_fields.h"
 #include "dem/pullout_tank.h"
 
 #include <gtest/gtest.h>
@@ -256,4 +257,77 @@ TEST(PullOutTank, SmallTankPlateauAboveOneFaceFrictionAndThreadIndependent)
       EXPECT_EQ(curve_2[k].head_displacement, curve[k].head_displacement) << "point " << k;
       EXPECT_EQ(curve_2[k].head_tension, curve[k].head_tension) << "point " << k;
     }
+}
+
+// The field outputs (dem/pullout_fields.h) on sets whose answers are known.
+TEST(PullOutFields, DisplacementsUpliftAndForceNetworkOfKnownMoves)
+{
+  // Two columns of three discs (radius 5 mm, 10 mm apart) and a cluster on the right; then the
+  // left column rises by 1 mm, the cluster moves by (2, -0.5) mm, the right column stays.
+  ParticleSet start;
+  for (int column = 0; column < 2; ++column)
+    for (int row = 0; row < 3; ++row)
+      start.add_disc(Vec2(0.005 + 0.01 * column, 0.005 + 0.01 * row), 0.005, 2000.0);
+  start.add_two_disc_cluster(Vec2(0.03, 0.01), 0.005, 0.0045, 0.0095, 0.0, 2000.0);
+  ParticleSet now = start;
+  const auto move = [&](std::size_t b, const Vec2 &d) {
+    now.x[b] += d.x();
+    now.y[b] += d.y();
+    for (std::uint32_t k = now.first_disc[b]; k < now.first_disc[b] + now.n_discs[b]; ++k)
+      {
+        now.disc_x[k] += d.x();
+        now.disc_y[k] += d.y();
+      }
+  };
+  for (std::size_t b = 0; b < 3; ++b)
+    move(b, Vec2(0.0, 0.001));
+  move(6, Vec2(0.002, -0.0005));
+  now.vx[6] = 0.25;
+
+  const std::vector<GrainDisplacement> grains = grain_displacements(start, now);
+  ASSERT_EQ(grains.size(), 7u);
+  for (std::size_t b = 0; b < 7; ++b)
+    {
+      EXPECT_EQ(grains[b].body_id, start.body_id[b]);
+      EXPECT_EQ(grains[b].x0, start.x[b]);
+      EXPECT_EQ(grains[b].y, now.y[b]);
+      EXPECT_EQ(grains[b].dx, now.x[b] - start.x[b]);
+      EXPECT_EQ(grains[b].dy, now.y[b] - start.y[b]);
+    }
+  EXPECT_NEAR(grains[0].dy, 0.001, 1e-15);
+  EXPECT_NEAR(grains[6].dx, 0.002, 1e-15);
+  EXPECT_NEAR(grains[6].dy, -0.0005, 1e-15);
+  EXPECT_EQ(grains[6].vx, 0.25);
+  EXPECT_EQ(grains[4].dx, 0.0);
+
+  // Strips 10 mm wide over 40 mm: the top disc of each column, then the cluster.
+  const std::vector<SurfacePoint> surface = surface_uplift(start, now, 0.04, 0.01);
+  ASSERT_EQ(surface.size(), 3u); // the fourth strip holds no centre
+  EXPECT_EQ(surface[0].body_id, start.body_id[2]);
+  EXPECT_NEAR(surface[0].top0, 0.03, 1e-15);
+  EXPECT_NEAR(surface[0].uplift, 0.001, 1e-15);
+  EXPECT_EQ(surface[1].body_id, start.body_id[5]);
+  EXPECT_EQ(surface[1].uplift, 0.0);
+  EXPECT_EQ(surface[2].body_id, start.body_id[6]);
+  EXPECT_NEAR(surface[2].uplift, -0.0005, 1e-15);
+  EXPECT_THROW(surface_uplift(start, now, 0.04, 0.0), std::invalid_argument);
+  ParticleSet fewer;
+  fewer.add_disc(Vec2(0.0, 0.0), 0.005, 2000.0);
+  EXPECT_THROW(grain_displacements(start, fewer), std::invalid_argument);
+
+  // Two discs overlapping by 0.1 mm: one chain, kn * overlap.
+  ParticleSet pair;
+  pair.add_disc(Vec2(0.0, 0.0), 0.005, 2000.0);
+  pair.add_disc(Vec2(0.0099, 0.0), 0.005, 2000.0);
+  ContactParameters contact;
+  contact.normal_stiffness = 1e7;
+  DemSettings settings;
+  settings.gravity = Vec2::Zero();
+  DemSystem system(pair, LinearContactLaw(contact), settings);
+  system.initialise_forces();
+  const std::vector<ForceChain> network = contact_force_network(system);
+  ASSERT_EQ(network.size(), 1u);
+  EXPECT_NEAR(network[0].normal_force, 1e7 * 1e-4, 1e-6);
+  EXPECT_EQ(network[0].x1, 0.0);
+  EXPECT_EQ(network[0].x2, 0.0099);
 }
