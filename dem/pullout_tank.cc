@@ -214,8 +214,6 @@ SheetLevelStress measure_sheet_level_stress(const DemSystem &system, const PullO
   // The segments of the lower part inside the tank now: from the one through the slot (the
   // lower part runs along -x from the clamp) to its end; their length inside the front wall.
   std::size_t first = 0;
-  while (first < tank.lower_part_end && std::max(sheet.x[first], sheet.x[first + 1]) <= geometry.tank_length)
-    ++first; // (never: the clamp is outside) kept for a sheet pulled past its lower part
   while (first < tank.lower_part_end && std::min(sheet.x[first], sheet.x[first + 1]) >= geometry.tank_length)
     ++first;
   double full_length = 0.0;
