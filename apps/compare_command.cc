@@ -3,6 +3,7 @@
 #include "apps/plot.h"
 
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -38,7 +39,7 @@ bool parse_number(const std::string &text, double &value)
   return end == t.c_str() + t.size();
 }
 
-std::size_t check_curve(const fs::path &directory)
+std::vector<std::array<double, 2>> read_curve(const fs::path &directory)
 {
   const fs::path file = directory / curve_file;
   std::ifstream in(file);
@@ -47,28 +48,31 @@ std::size_t check_curve(const fs::path &directory)
                              " (not a finished pull-out run?)");
   std::string line;
   std::getline(in, line);
-  if (trimmed(line) != curve_header)
+  const std::string header = trimmed(line);
+  if (header.rfind(curve_header, 0) != 0 || (header.size() > std::strlen(curve_header) && header[std::strlen(curve_header)] != ','))
     throw std::runtime_error("compare: " + file.string() + " (result directory '" + directory.string() +
-                             "') has the columns '" + trimmed(line) + "', expected '" + curve_header + "'");
-  std::size_t n_rows = 0, line_number = 1;
+                             "') has the columns '" + header + "', expected '" + curve_header + "'");
+  std::vector<std::array<double, 2>> rows;
+  std::size_t line_number = 1;
   while (std::getline(in, line))
     {
       ++line_number;
       if (trimmed(line).empty())
         continue;
       const auto comma = line.find(',');
+      const auto next = comma == std::string::npos ? std::string::npos : line.find(',', comma + 1);
       double x = 0.0, y = 0.0;
       if (comma == std::string::npos || !parse_number(line.substr(0, comma), x) ||
-          !parse_number(line.substr(comma + 1), y))
+          !parse_number(line.substr(comma + 1, next == std::string::npos ? std::string::npos : next - comma - 1), y))
         throw std::runtime_error("compare: " + file.string() + " (result directory '" + directory.string() +
                                  "'), line " + std::to_string(line_number) + ": expected two numbers, got '" +
                                  trimmed(line) + "'");
-      ++n_rows;
+      rows.push_back({{x, y}});
     }
-  if (n_rows == 0)
+  if (rows.empty())
     throw std::runtime_error("compare: " + file.string() + " (result directory '" + directory.string() +
                              "') has a header but no rows");
-  return n_rows;
+  return rows;
 }
 
 /// The literal after "key": in a flat JSON object (as Summary writes it), or nothing.
@@ -103,7 +107,8 @@ PulloutRunRecord read_pullout_run(const fs::path &directory)
     throw std::runtime_error("compare: result directory '" + directory.string() + "' does not exist");
   PulloutRunRecord record;
   record.directory = directory;
-  record.n_points = check_curve(directory);
+  record.curve = read_curve(directory);
+  record.n_points = record.curve.size();
 
   const fs::path summary = directory / summary_file;
   std::ifstream in(summary);

@@ -6,6 +6,7 @@
 // Each directory must hold the pull-out output contract (issue 4): `pullout_curve.csv` with the
 // header `head_displacement_m,head_tension_kN_per_m`, and `summary.json` with `mode` and
 // `T_max_kN_per_m`. Nothing is computed: the command reads, checks and plots.
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -19,11 +20,14 @@ struct PulloutRunRecord
   std::string mode;                 ///< summary.json "mode": dem, fem or hybrid
   double max_head_tension_kN = 0.0; ///< summary.json "T_max_kN_per_m" [kN/m]
   std::size_t n_points = 0;         ///< rows of pullout_curve.csv
+  /// Its first two columns, row by row: head displacement [m], head tension [kN/m].
+  std::vector<std::array<double, 2>> curve;
 };
 
 /// Reads and checks `directory`. Throws std::runtime_error naming the directory and the file if
-/// pullout_curve.csv or summary.json is missing, the CSV's header is not the contract's or a row is
-/// not two numbers, or summary.json lacks "mode" or "T_max_kN_per_m".
+/// pullout_curve.csv or summary.json is missing, the CSV's header does not start with the
+/// contract's two columns (more may follow, as in the curve averaged over seeds) or a row does not
+/// start with two numbers, or summary.json lacks "mode" or "T_max_kN_per_m".
 PulloutRunRecord read_pullout_run(const std::filesystem::path &directory);
 
 /// Overlays the curves of `directories` in `png` (legend: directory name and mode). Returns the

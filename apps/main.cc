@@ -5,6 +5,7 @@
 //   geohybrid biaxial FILE.prm             REDF samples in biaxial compression, friction angle, E
 //   geohybrid calibrate FILE.prm           contact friction, kn, ks/kn fitted to target phi', E (nu)
 //   geohybrid pullout FILE.prm             pull-out of a geosynthetic anchored in the INSA tank
+//   geohybrid pullout FILE.prm --seeds N   the same on N fills (seeds s, s+1, ...), averaged
 //   geohybrid compare DIR1 DIR2 ... [--output FILE.png]   pull-out curves of result directories in one PNG
 //   geohybrid COMMAND --print-parameters   every parameter of COMMAND with default, unit, doc
 //
@@ -15,6 +16,7 @@
 #include "apps/compare_command.h"
 #include "apps/dem_command.h"
 #include "apps/pullout_command.h"
+#include "apps/pullout_seeds.h"
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -44,7 +46,8 @@ const std::map<std::string, Command> &commands()
     {"calibrate", {"fit contact friction, kn and ks/kn to a target friction angle, E (and nu) by biaxial runs",
                    geohybrid::apps::declare_calibrate_parameters, geohybrid::apps::run_calibrate_command}},
     {"pullout", {"pull-out test of a geosynthetic in the INSA tank: simple run-out or wrap-around (mode = dem)",
-                 geohybrid::apps::declare_pullout_parameters, geohybrid::apps::run_pullout_command}},
+                 geohybrid::apps::declare_pullout_parameters,
+                 [](const std::string &file, bool resume) { return geohybrid::apps::run_pullout_command(file, resume); }}},
   };
   return table;
 }
@@ -54,6 +57,7 @@ void print_usage(std::ostream &out)
   out << "geohybrid: 2D DEM of soil coupled with a deal.II continuum, for geosynthetic anchorages\n\n"
          "usage: geohybrid COMMAND FILE.prm|FILE.json [--resume]\n"
          "       geohybrid COMMAND --print-parameters   (every parameter, default, unit and meaning)\n"
+         "       geohybrid pullout FILE.prm --seeds N   (N fills, seeds s, s+1, ...; the averaged curve)\n"
          "       geohybrid compare DIR1 DIR2 ... [--output FILE.png]   (pull-out curves in one PNG)\n"
          "       geohybrid --help\n\n"
          "--resume continues the run of FILE from its last checkpoint, OUTPUT/checkpoint.h5\n"
@@ -92,11 +96,24 @@ int main(int argc, char **argv)
   // The arguments after the command: --print-parameters alone, or one input file and --resume.
   std::string input_file;
   bool resume = false, print_parameters = false;
+  int n_seeds = 0; // pullout --seeds N
   for (int k = 2; k < argc; ++k)
     {
       const std::string argument = argv[k];
       if (argument == "--resume" && !resume)
         resume = true;
+      else if (argument == "--seeds" && !std::strcmp(argv[1], "pullout") && n_seeds == 0)
+        {
+          char *end = nullptr;
+          const long n = k + 1 < argc ? std::strtol(argv[k + 1], &end, 10) : 0;
+          if (k + 1 >= argc || *end != '\0' || n < 1 || n > 1000)
+            {
+              std::cerr << "geohybrid pullout: '--seeds' needs a number of seeds in [1, 1000]\n";
+              return 2;
+            }
+          n_seeds = static_cast<int>(n);
+          ++k;
+        }
       else if (argument == "--print-parameters" && !print_parameters)
         print_parameters = true;
       else if (argument.rfind("--", 0) != 0 && input_file.empty())
@@ -108,7 +125,7 @@ int main(int argc, char **argv)
           return 2;
         }
     }
-  if (print_parameters ? (resume || !input_file.empty()) : input_file.empty())
+  if (print_parameters ? (resume || n_seeds > 0 || !input_file.empty()) : (input_file.empty() || (resume && n_seeds > 0)))
     {
       std::cerr << "geohybrid " << argv[1] << ": expected one input file (optionally followed by --resume) or "
                 << "--print-parameters\n";
@@ -123,6 +140,8 @@ int main(int argc, char **argv)
           prm.print_parameters(std::cout, dealii::ParameterHandler::OutputStyle::PRM);
           return 0;
         }
+      if (n_seeds > 0)
+        return geohybrid::apps::run_pullout_seeds(input_file, n_seeds);
       return found->second.run(input_file, resume);
     }
   catch (const std::exception &e)

@@ -17,14 +17,20 @@ bool plot_png(const std::filesystem::path &png, const std::string &title, const 
        << "set multiplot layout " << panels.size() << ",1 title '" << title << "'\n";
     for (const PlotPanel &panel : panels)
       {
-        gp << "set xlabel '" << panel.x_label << "'\nset ylabel '" << panel.y_label << "'\nplot ";
+        gp << panel.settings << (panel.settings.empty() ? "" : "\n") << "set xlabel '" << panel.x_label
+           << "'\nset ylabel '" << panel.y_label << "'\nplot ";
         for (std::size_t k = 0; k < panel.series.size(); ++k)
           {
             const PlotSeries &s = panel.series[k];
             gp << (k ? ", " : "") << "'" << s.csv.string() << "' using ($" << s.x_column << "*" << s.x_scale << "):($"
-               << s.y_column << "*" << s.y_scale << ") with lines lw 2 title '" << s.label << "'";
+               << s.y_column << "*" << s.y_scale << ")";
+            for (std::size_t e = 0; e < s.extra_columns.size(); ++e)
+              gp << ":($" << s.extra_columns[e] << "*" << (e < s.extra_scales.size() ? s.extra_scales[e] : s.y_scale) << ")";
+            gp << " with " << s.style << " title '" << s.label << "'";
           }
         gp << "\n";
+        if (!panel.settings.empty())
+          gp << "reset\nset datafile separator ','\nset key autotitle columnhead\nset grid\n";
       }
     gp << "unset multiplot\n";
   }

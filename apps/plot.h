@@ -13,12 +13,18 @@ struct PlotSeries
   int x_column, y_column;     ///< 1-based
   std::string label;
   double x_scale = 1.0, y_scale = 1.0; ///< e.g. 1e-3 to plot Pa as kPa
+  std::string style = "lines lw 2";    ///< gnuplot's 'with' clause
+  /// Further columns after x and y (e.g. the upper bound of a band for 'filledcurves', or dx, dy
+  /// and a line width for 'vectors'), each scaled by its extra_scales entry, y_scale if none.
+  std::vector<int> extra_columns = {};
+  std::vector<double> extra_scales = {};
 };
 
 struct PlotPanel
 {
   std::string x_label, y_label;
   std::vector<PlotSeries> series;
+  std::string settings = ""; ///< gnuplot commands before the panel's plot (e.g. "set size ratio -1")
 };
 
 /// Writes PNG.gp and runs gnuplot to make PNG with the panels stacked vertically. Returns false

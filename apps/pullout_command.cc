@@ -14,11 +14,14 @@
 //   sheet_displacements.csv  displacement of the sheet's beginning, middle and end of the anchorage
 //   sheet_tension.csv        tension along the sheet at the chosen head displacements
 //   pullout_curve.png        the curve, with the experimental T_max if given
+//   pullout_fields.h5/.xdmf, grain_displacements_u*mm.csv/.png, force_network_u*mm.csv/.png,
+//   surface_uplift.csv/.png  the soil's fields at 'Output/field outputs at' (pullout_field_output.h)
 //   parameters.prm, summary.json (written last)
 #include "pullout_command.h"
 
 #include "contact_parameters.h"
 #include "plot.h"
+#include "pullout_field_output.h"
 #include "run_directory.h"
 
 #include "dem/measurements.h"
@@ -149,6 +152,10 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.enter_subsection("Output");
   prm.declare_entry("experimental T_max", "", Patterns::Anything(),
                     "Measured maximum head tension to mark on the plot; empty = none [kN/m]");
+  prm.declare_entry("field outputs at", "0.006, 0.06", Patterns::List(Patterns::Double(0.0), 0, 100),
+                    "Head displacements at which the grains' displacements since the start of the pull, the "
+                    "contact-force network, an HDF5/XDMF snapshot and the surface uplift are written (the "
+                    "paper's Figures 10-12); empty = none [m]");
   prm.declare_entry("stress band", "0.05", Patterns::Double(1e-6),
                     "Height of the soil band above the sheet where the Love-Weber vertical stress is measured [m]");
   prm.leave_subsection();
@@ -169,6 +176,7 @@ struct PullOutInput
   dem::PullOutTankSpec tank;
   dem::PullSpec pull;
   std::vector<double> profiles_at;
+  std::vector<double> fields_at; ///< [m]
   std::optional<double> experimental_T_max; ///< [N/m]
   double stress_band = 0.05;
 };
@@ -254,6 +262,8 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where)
       in.experimental_T_max = 1e3 * T;
     }
   in.stress_band = prm.get_double("stress band");
+  for (const std::string &item : dealii::Utilities::split_string_list(prm.get("field outputs at"), ','))
+    in.fields_at.push_back(std::stod(item));
   prm.leave_subsection();
 
   in.tank.validate(where);
@@ -265,13 +275,15 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where)
 }
 } // namespace
 
-int run_pullout_command(const std::string &input_file, bool resume)
+int run_pullout_command(const std::string &input_file, bool resume, const ParameterOverrides &overrides)
 {
   if (resume)
     throw std::invalid_argument("geohybrid pullout: --resume is not supported yet; rerun the input");
   ParameterHandler prm;
   declare_pullout_parameters(prm);
   parse_input_file(prm, input_file);
+  for (const auto &[path, value] : overrides)
+    set_parameter(prm, path, value);
   const std::string where = "input file '" + input_file + "'";
   const std::string mode = prm.get("mode");
   if (mode != "dem")
@@ -322,6 +334,11 @@ int run_pullout_command(const std::string &input_file, bool resume)
   displacements << "head_displacement_m,beginning_displacement_m,middle_displacement_m,end_displacement_m\n";
   profiles << "head_displacement_m,node,arc_length_m,x_m,y_m,tension_kN_per_m\n";
   const std::size_t middle = (tank.first_node_inside + tank.lower_part_end) / 2;
+  const dem::ParticleSet &grains = system.particles();
+  // Surface strips two disc diameters wide: a cluster's centre lies between its discs, so strips
+  // one disc wide may hold no centre of a surface grain.
+  PullOutFieldOutput fields(out, in.fields_at, g.tank_length,
+                            4.0 * *std::max_element(grains.disc_radius.begin(), grains.disc_radius.end()));
   std::size_t next_profile = 0;
   double T_max = 0.0, u_at_T_max = 0.0;
   ProgressReport progress("pulling", in.pull.final_displacement);
@@ -345,10 +362,12 @@ int run_pullout_command(const std::string &input_file, bool resume)
         T_max = p.head_tension;
         u_at_T_max = p.head_displacement;
       }
+    fields.record(p.head_displacement, s);
     progress.update(p.head_displacement);
   };
   dem::pull_out(system, in.pull, record);
   progress.finish();
+  fields.finish();
   for (std::ofstream *f : {&curve, &per_sheet, &displacements, &profiles})
     if (!f->flush())
       throw std::runtime_error("cannot write the results in " + out.string());

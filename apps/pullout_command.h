@@ -6,9 +6,13 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace geohybrid::apps
 {
 void declare_pullout_parameters(dealii::ParameterHandler &prm);
-int run_pullout_command(const std::string &input_file, bool resume);
+/// Entries set after the input file is read, as (path, value): ("Filling/seed", "4").
+using ParameterOverrides = std::vector<std::pair<std::string, std::string>>;
+int run_pullout_command(const std::string &input_file, bool resume, const ParameterOverrides &overrides = {});
 } // namespace geohybrid::apps

@@ -11,6 +11,7 @@
 #include <locale>
 #include <sstream>
 #include <unistd.h>
+#include <vector>
 
 namespace geohybrid::apps
 {
@@ -37,6 +38,24 @@ void parse_input_file(dealii::ParameterHandler &prm, const std::string &input_fi
         }
       throw std::runtime_error("input file '" + input_file + "': " + message);
     }
+}
+
+void set_parameter(dealii::ParameterHandler &prm, const std::string &path, const std::string &value)
+{
+  std::vector<std::string> parts;
+  for (std::size_t start = 0;;)
+    {
+      const std::size_t slash = path.find('/', start);
+      parts.push_back(path.substr(start, slash == std::string::npos ? std::string::npos : slash - start));
+      if (slash == std::string::npos)
+        break;
+      start = slash + 1;
+    }
+  for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+    prm.enter_subsection(parts[k]);
+  prm.set(parts.back(), value);
+  for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+    prm.leave_subsection();
 }
 
 std::filesystem::path prepare_output_directory(const std::string &directory)

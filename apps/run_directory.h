@@ -21,6 +21,10 @@ namespace geohybrid::apps
 /// message trimmed to what the user needs (file, line, entry, expected pattern).
 void parse_input_file(dealii::ParameterHandler &prm, const std::string &input_file);
 
+/// Sets the entry at `path` ("subsection/.../entry", e.g. "Filling/seed") to `value`, as if the
+/// input file had said so (the entry's pattern is checked by ParameterHandler).
+void set_parameter(dealii::ParameterHandler &prm, const std::string &path, const std::string &value);
+
 /// Creates the directory (and parents), removing a stale summary.json from an earlier run.
 std::filesystem::path prepare_output_directory(const std::string &directory);
 

@@ -210,15 +210,30 @@ SheetLevelStress measure_sheet_level_stress(const DemSystem &system, const PullO
                                             const PullOutGeometry &geometry, double band)
 {
   SheetLevelStress s;
-  // The lower part runs along -x from the clamp: perp(u) points down, so its "left" face is the
-  // bottom one (measurements.h).
-  const SheetFaceStresses faces = sheet_face_stresses(system, 0, tank.first_node_inside, tank.lower_part_end);
   const SparSheet &sheet = system.sheets().at(0);
-  for (std::size_t k = tank.first_node_inside; k < tank.lower_part_end; ++k)
-    s.lower_part_length += sheet.segment_length(k);
-  s.top_face = faces.normal_right;
-  s.bottom_face = faces.normal_left;
-  s.normal_force_both_faces = (faces.normal_left + faces.normal_right) * s.lower_part_length;
+  // The segments of the lower part inside the tank now: from the one through the slot (the
+  // lower part runs along -x from the clamp) to its end; their length inside the front wall.
+  std::size_t first = 0;
+  while (first < tank.lower_part_end && std::min(sheet.x[first], sheet.x[first + 1]) >= geometry.tank_length)
+    ++first;
+  double full_length = 0.0;
+  for (std::size_t k = first; k < tank.lower_part_end; ++k)
+    {
+      const double length = sheet.segment_length(k);
+      const double x_in = std::min(sheet.x[k], sheet.x[k + 1]), x_out = std::max(sheet.x[k], sheet.x[k + 1]);
+      const double inside = x_out > geometry.tank_length ? (geometry.tank_length - x_in) / (x_out - x_in) : 1.0;
+      full_length += length;
+      s.lower_part_length += inside * length;
+    }
+  if (!(s.lower_part_length > 0.0))
+    return s;
+  // The lower part runs along -x from the clamp: perp(u) points down, so its "left" face is the
+  // bottom one (measurements.h). sheet_face_stresses divides by the segments' whole length.
+  const SheetFaceStresses faces = sheet_face_stresses(system, 0, first, tank.lower_part_end);
+  const double to_inside = full_length / s.lower_part_length;
+  s.top_face = faces.normal_right * to_inside;
+  s.bottom_face = faces.normal_left * to_inside;
+  s.normal_force_both_faces = (faces.normal_left + faces.normal_right) * full_length;
   const Region above{geometry.tank_length - geometry.anchorage_length, tank.sheet_level, geometry.tank_length,
                      tank.sheet_level + band};
   s.love_weber_above = -love_weber_stress(system, above)[1];
@@ -226,6 +241,58 @@ SheetLevelStress measure_sheet_level_stress(const DemSystem &system, const PullO
 }
 
 double head_tension(const DemSystem &system) { return system.sheets().at(0).reaction(0).x(); }
+
+HeadTensionParts head_tension_parts(const DemSystem &system)
+{
+  const SparSheet &sheet = system.sheets().at(0);
+  const SheetContacts &c = system.sheet_contacts().at(0);
+  const ParticleSet &p = system.particles();
+  HeadTensionParts parts;
+  parts.reaction = head_tension(system);
+  for (std::size_t q = 0; q < c.size(); ++q)
+    {
+      if (c.force_x[q] == 0.0 && c.force_y[q] == 0.0)
+        continue;
+      const Vec2 centre(p.disc_x[c.disc[q]], p.disc_y[c.disc[q]]);
+      const Vec2 to_sheet = point_on_segment(sheet, c.segment[q], c.position[q]) - centre;
+      const double distance = to_sheet.norm();
+      const Vec2 on_sheet(-c.force_x[q], -c.force_y[q]);
+      // The normal force pushes the sheet away from the disc, along to_sheet.
+      const Vec2 n = distance > 0.0 ? Vec2(to_sheet / distance) : Vec2(on_sheet.normalized());
+      const double normal = on_sheet.dot(n);
+      const Vec2 tangential = on_sheet - normal * n;
+      parts.interface_normal -= normal * n.x();
+      parts.interface_friction -= tangential.x();
+      parts.normal_force += normal;
+      parts.elastic_normal_force += c.elastic_normal_force[q];
+      parts.tangential_force += tangential.norm();
+    }
+  for (const SheetWallContacts &w : c.walls)
+    for (std::size_t q = 0; q < w.size(); ++q)
+      parts.node_wall -= w.force_x[q];
+  for (std::size_t k = 0; k < sheet.n_nodes(); ++k)
+    if (!sheet.is_kinematic(k))
+      {
+        // fx is the resultant without local damping (spar_sheet.h): m a = fx + damping_fx.
+        parts.inertia += sheet.fx[k] + sheet.damping_fx[k];
+        parts.damping -= sheet.damping_fx[k];
+      }
+  return parts;
+}
+
+DemSystem with_threads(const DemSystem &system, int n_threads)
+{
+  DemSystemState state = system.export_state();
+  DemSettings settings = system.settings();
+  settings.n_threads = n_threads;
+  DemSystem copy(state.particles, system.particle_law(), settings);
+  for (const Wall &wall : system.walls())
+    copy.add_wall(wall);
+  copy.set_sheet_local_damping(system.sheet_local_damping() >= 0.0 ? system.sheet_local_damping()
+                                                                   : settings.local_damping);
+  copy.restore_state(std::move(state));
+  return copy;
+}
 
 std::vector<PullPoint> pull_out(DemSystem &system, const PullSpec &spec,
                                 const std::function<void(const PullPoint &, const DemSystem &)> &record)

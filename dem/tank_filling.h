@@ -15,13 +15,18 @@
 //  3. a flat lid loosens the packing along it over about one particle size, so the lid of every
 //     layer but the last stands one such band above the layer's top level: the loose band lies
 //     in the next layer's slab, whose grains grow into its hollows (the last layer's lid is at
-//     the fill's height);
+//     the fill's height). The lift a sheet is laid on is levelled instead: its lid is at its
+//     top level, so that the sheet lies flat on it (the grains above cannot reach below the
+//     sheet to fill a rough surface's hollows);
 //  4. the material friction is restored, the lid is taken away, every grain is freed and the
 //     whole fill settles under gravity, walls fixed, with local damping, until equilibrium.
 //
 // The result is a DemSystem in equilibrium under gravity, with the porosity of each layer's slab
 // at the end of its growth and in the final fill (settling under the layers above compacts the
 // lower ones a little).
+//
+// Porosities are of the space the grains can fill: the area of a sheet in a slab (its thickness
+// times its length there) is not counted as void.
 //
 // A geosynthetic is laid as in the laboratory, on a lift at its depth (TankFillingSpec::sheet):
 // once the layers below it have settled, the sheet is added to the system and stays in the tank
@@ -104,8 +109,8 @@ struct TankLayer
   /// the last one the band of the layer below), so that all layers have the same sizes.
   std::size_t first_body = 0, n_bodies = 0;
   double target_porosity = 0.0;
-  double porosity_grown = 0.0;        ///< slab_porosity of its slab at the end of its growth [-]
-  double porosity = 0.0;              ///< slab_porosity of its slab in the final fill [-]
+  double porosity_grown = 0.0;        ///< porosity of its slab at the end of its growth, without the sheets' area [-]
+  double porosity = 0.0;              ///< the same in the final fill (slab_porosity if there is no sheet) [-]
   double growth_friction_deg = 0.0;   ///< the lowest friction used in its growth
   std::uint64_t n_growth_steps = 0, n_settling_steps = 0;
 };

@@ -2,10 +2,13 @@
 // exact columns, summary.json keys, the sheet's displacements and tension profiles), the soil
 // taken from a `geohybrid calibrate` fragment, and bad input refused naming the entry.
 #include "apps/pullout_command.h"
+#include "apps/pullout_seeds.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,16 +31,18 @@ fs::path test_directory()
 std::string write_input(const fs::path &directory, const std::string &extra)
 {
   std::ofstream(directory / "calibrated_soil.prm")
-    << "subsection Particle contact\n  set normal stiffness = 7e7\n  set shear stiffness = 3.5e7\n"
+    << "subsection Particle contact\n  set normal stiffness = 1e7\n  set shear stiffness = 5e6\n"
     << "  set friction angle = 10\n  set shear strength = 0\n  set tensile strength = 0\nend\n";
   const fs::path file = directory / "pullout.prm";
   std::ofstream(file) << "set output directory = " << (directory / "out").string() << "\n"
                       << "set threads = 1\nset mode = dem\n"
                       << "subsection Tank\n  set length = 0.16\n  set fill height = 0.1\n  set clamp offset = 0.01\nend\n"
                       << "subsection Anchorage\n  set H = 0.05\n  set L = 0.1\nend\n"
+                      << "subsection Sheet\n  subsection Interface\n    set normal stiffness = 1e7\n"
+                      << "    set shear stiffness = 5e6\n  end\nend\n"
                       << "subsection Soil\n  include " << (directory / "calibrated_soil.prm").string() << "\nend\n"
                       << "subsection Filling\n  set number of particles = 400\n  set number of layers = 2\n"
-                      << "  set size ratio = 0.8\n  set target porosity = 0.25\n  set growth stress = 20e3\n"
+                      << "  set size ratio = 0.8\n  set target porosity = 0.25\n  set growth stress = 5e3\n"
                       << "  set equilibrium unbalanced ratio = 1e-3\n  set seed = 3\nend\n"
                       << "subsection Pull\n  set rate = 0.02\n  set final displacement = 0.002\n"
                       << "  set record interval = 0.0005\n  set tension profiles at = 0.001, 0.002\nend\n"
@@ -69,7 +74,8 @@ std::vector<std::string> lines_of(const fs::path &file)
 }
 } // namespace
 
-// About a minute (measured 57 s on 1 thread, the filling 55 s of it).
+// Soft contacts (kn = 1e7 N/m/m, grains and interface) and a 5 kPa growth stress, as in
+// test_dem_pullout.cc: about 5 s of CPU (Table 5's kn = 7e7 and 20 kPa took 16 s, measured).
 TEST(PullOutCommand, WritesTheContract)
 {
   const fs::path d = test_directory();
@@ -130,6 +136,164 @@ TEST(PullOutCommand, BadInputNamesTheEntry)
       const std::string message = error_of(write_input(d, c.extra));
       EXPECT_NE(message.find(c.expected), std::string::npos) << c.extra << " -> " << message;
       EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
+    }
+  fs::remove_all(d);
+}
+
+namespace
+{
+/// A tiny run for --seeds: the tank above with soft contacts (kn = 1e7 N/m/m, as in
+/// test_dem_pullout.cc), a 5 kPa growth stress, settled loosely, pulled 1 mm at 10 mm/s. Each
+/// seed fills and pulls in about 3 s of CPU.
+std::string write_tiny_input(const fs::path &directory)
+{
+  const fs::path file = directory / "tiny.prm";
+  std::ofstream(file) << "set output directory = " << (directory / "out").string() << "\n"
+                      << "set threads = 1\nset mode = dem\n"
+                      << "subsection Tank\n  set length = 0.16\n  set fill height = 0.1\n  set clamp offset = 0.01\nend\n"
+                      << "subsection Anchorage\n  set H = 0.05\n  set L = 0.1\nend\n"
+                      << "subsection Sheet\n  subsection Interface\n    set normal stiffness = 1e7\n"
+                      << "    set shear stiffness = 5e6\n  end\nend\n"
+                      << "subsection Soil\n  subsection Particle contact\n    set normal stiffness = 1e7\n"
+                      << "    set shear stiffness = 5e6\n  end\nend\n"
+                      << "subsection Filling\n  set number of particles = 400\n  set number of layers = 2\n"
+                      << "  set size ratio = 0.8\n  set target porosity = 0.25\n  set growth stress = 5e3\n"
+                      << "  set equilibrium unbalanced ratio = 1e-2\n  set seed = 3\nend\n"
+                      << "subsection Pull\n  set rate = 0.01\n  set final displacement = 0.001\n"
+                      << "  set record interval = 0.00025\n  set tension profiles at = 0.001\nend\n";
+  return file.string();
+}
+
+/// The rows of a CSV file of numbers, after its header.
+std::vector<std::vector<double>> numbers_of(const fs::path &file)
+{
+  std::vector<std::vector<double>> rows;
+  const std::vector<std::string> lines = lines_of(file);
+  for (std::size_t k = 1; k < lines.size(); ++k)
+    {
+      std::vector<double> row;
+      std::istringstream in(lines[k]);
+      for (std::string field; std::getline(in, field, ',');)
+        row.push_back(std::stod(field));
+      rows.push_back(row);
+    }
+  return rows;
+}
+
+double json_number(const fs::path &file, const std::string &key)
+{
+  std::stringstream text;
+  text << std::ifstream(file).rdbuf();
+  const std::string s = text.str();
+  const auto at = s.find("\"" + key + "\": ");
+  if (at == std::string::npos)
+    return std::nan("");
+  return std::stod(s.substr(at + key.size() + 4));
+}
+} // namespace
+
+// `--seeds 2`: two fills (seeds 3 and 4), each with its full contract in seed_<s>/, and the
+// curve averaged row by row: the mean, min, max and sample standard deviation of the two seeds'
+// head tensions (to the 10 digits the CSV files hold), T_max the mean of the two T_max.
+TEST(PullOutCommand, SeedsAverageTheCurves)
+{
+  const fs::path d = test_directory();
+  const std::string input = write_tiny_input(d);
+  EXPECT_THROW(geohybrid::apps::run_pullout_seeds(input, 0), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(d / "out"));
+  ASSERT_EQ(geohybrid::apps::run_pullout_seeds(input, 2), 0);
+  const fs::path out = d / "out";
+  for (const char *seed : {"seed_3", "seed_4"})
+    {
+      EXPECT_TRUE(fs::exists(out / seed / "summary.json")) << seed;
+      EXPECT_EQ(lines_of(out / seed / "pullout_curve.csv")[0], "head_displacement_m,head_tension_kN_per_m");
+    }
+  EXPECT_EQ(lines_of(out / "pullout_curve.csv")[0],
+            "head_displacement_m,head_tension_kN_per_m,head_tension_min_kN_per_m,head_tension_max_kN_per_m,"
+            "head_tension_std_kN_per_m");
+  const auto mean = numbers_of(out / "pullout_curve.csv"), a = numbers_of(out / "seed_3" / "pullout_curve.csv"),
+             b = numbers_of(out / "seed_4" / "pullout_curve.csv");
+  ASSERT_EQ(mean.size(), 5u); // the start and four intervals of 0.25 mm
+  ASSERT_EQ(a.size(), mean.size());
+  ASSERT_EQ(b.size(), mean.size());
+  bool seeds_differ = false;
+  for (std::size_t r = 0; r < mean.size(); ++r)
+    {
+      ASSERT_EQ(mean[r].size(), 5u);
+      const double tolerance = 1e-9 * (std::abs(a[r][1]) + std::abs(b[r][1])) + 1e-15;
+      EXPECT_NEAR(mean[r][0], 0.5 * (a[r][0] + b[r][0]), 1e-12) << "row " << r;
+      EXPECT_NEAR(mean[r][1], 0.5 * (a[r][1] + b[r][1]), tolerance) << "row " << r;
+      EXPECT_NEAR(mean[r][2], std::min(a[r][1], b[r][1]), tolerance) << "row " << r;
+      EXPECT_NEAR(mean[r][3], std::max(a[r][1], b[r][1]), tolerance) << "row " << r;
+      EXPECT_NEAR(mean[r][4], std::abs(a[r][1] - b[r][1]) / std::sqrt(2.0), tolerance) << "row " << r;
+      seeds_differ = seeds_differ || a[r][1] != b[r][1];
+    }
+  EXPECT_TRUE(seeds_differ); // two fills, not one twice
+  const double T3 = json_number(out / "seed_3" / "summary.json", "T_max_kN_per_m"),
+               T4 = json_number(out / "seed_4" / "summary.json", "T_max_kN_per_m");
+  EXPECT_NEAR(json_number(out / "summary.json", "T_max_kN_per_m"), 0.5 * (T3 + T4), 1e-10 * (T3 + T4));
+  EXPECT_NEAR(json_number(out / "summary.json", "T_max_std_kN_per_m"), std::abs(T3 - T4) / std::sqrt(2.0),
+              1e-10 * (T3 + T4));
+  EXPECT_EQ(json_number(out / "summary.json", "n_seeds"), 2.0);
+  EXPECT_EQ(json_number(out / "summary.json", "n_particles"), 400.0);
+  std::stringstream summary;
+  summary << std::ifstream(out / "summary.json").rdbuf();
+  EXPECT_NE(summary.str().find("\"seeds\": \"3, 4\""), std::string::npos) << summary.str();
+  EXPECT_NE(summary.str().find("\"mode\": \"dem\""), std::string::npos) << summary.str();
+  if (std::system("command -v gnuplot > /dev/null 2>&1") == 0)
+    {
+      EXPECT_TRUE(fs::exists(out / "pullout_curve.png"));
+    }
+  fs::remove_all(d);
+}
+
+// The soil's fields (Figures 10-12) at two head displacements of the tiny run: the grains'
+// displacements since the start of the pull (x - x0, the same start in both files), the force
+// network, three snapshots (the start and the two displacements) and the surface uplift, whose
+// grains rise as those grains do in the displacement field.
+TEST(PullOutCommand, WritesTheFieldsAtChosenDisplacements)
+{
+  const fs::path d = test_directory();
+  const std::string input = write_tiny_input(d);
+  std::ofstream(input, std::ios::app) << "subsection Output\n  set field outputs at = 0.001, 0.0005\nend\n";
+  ASSERT_EQ(error_of(input), "");
+  const fs::path out = d / "out";
+  const auto half = numbers_of(out / "grain_displacements_u0.5mm.csv"),
+             full = numbers_of(out / "grain_displacements_u1mm.csv");
+  EXPECT_EQ(lines_of(out / "grain_displacements_u1mm.csv")[0],
+            "body_id,x0_m,y0_m,x_m,y_m,dx_m,dy_m,vx_m_per_s,vy_m_per_s");
+  ASSERT_EQ(half.size(), 400u);
+  ASSERT_EQ(full.size(), 400u);
+  double largest = 0.0;
+  for (std::size_t b = 0; b < full.size(); ++b)
+    {
+      ASSERT_EQ(full[b].size(), 9u);
+      EXPECT_EQ(full[b][0], half[b][0]); // the same body
+      EXPECT_EQ(full[b][1], half[b][1]); // from the same start
+      EXPECT_EQ(full[b][2], half[b][2]);
+      EXPECT_NEAR(full[b][5], full[b][3] - full[b][1], 1e-12) << "body " << full[b][0];
+      EXPECT_NEAR(full[b][6], full[b][4] - full[b][2], 1e-12) << "body " << full[b][0];
+      largest = std::max(largest, std::hypot(full[b][5], full[b][6]));
+    }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LT(largest, 0.001); // no grain moves farther than the head
+  const auto network = numbers_of(out / "force_network_u1mm.csv");
+  EXPECT_GT(network.size(), 400u); // a connected packing: more contacts than grains
+  for (const auto &chain : network)
+    EXPECT_GE(chain[4], 0.0);
+  std::stringstream xdmf;
+  xdmf << std::ifstream(out / "pullout_fields.xdmf").rdbuf();
+  EXPECT_NE(xdmf.str().find("snapshot_000002"), std::string::npos);
+  EXPECT_EQ(xdmf.str().find("snapshot_000003"), std::string::npos);
+  EXPECT_EQ(lines_of(out / "surface_uplift.csv")[0], "body_id,x_m,surface_y_m,uplift_m_at_0.5mm,uplift_m_at_1mm");
+  const auto surface = numbers_of(out / "surface_uplift.csv");
+  EXPECT_GT(surface.size(), 8u); // strips of two discs (about 11 mm) across 0.16 m
+  for (const auto &point : surface)
+    {
+      const auto grain = std::find_if(full.begin(), full.end(), [&](const auto &row) { return row[0] == point[0]; });
+      ASSERT_NE(grain, full.end());
+      EXPECT_NEAR(point[4], (*grain)[6], 1e-12);
+      EXPECT_GT(point[2], 0.08); // the surface of a 0.1 m fill
     }
   fs::remove_all(d);
 }

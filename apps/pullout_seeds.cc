@@ -1,0 +1,134 @@
+#include "pullout_seeds.h"
+
+#include "compare_command.h"
+#include "plot.h"
+#include "pullout_command.h"
+#include "run_directory.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <stdexcept>
+#include <vector>
+
+namespace geohybrid::apps
+{
+namespace
+{
+/// Mean, extremes and sample standard deviation (n - 1) of a few values.
+struct Spread
+{
+  double mean = 0.0, min = 0.0, max = 0.0, std = 0.0;
+};
+
+Spread spread_of(const std::vector<double> &v)
+{
+  Spread s;
+  s.min = *std::min_element(v.begin(), v.end());
+  s.max = *std::max_element(v.begin(), v.end());
+  for (const double x : v)
+    s.mean += x / static_cast<double>(v.size());
+  if (v.size() > 1)
+    {
+      double squares = 0.0;
+      for (const double x : v)
+        squares += (x - s.mean) * (x - s.mean);
+      s.std = std::sqrt(squares / static_cast<double>(v.size() - 1));
+    }
+  return s;
+}
+} // namespace
+
+int run_pullout_seeds(const std::string &input_file, int n_seeds)
+{
+  if (n_seeds < 1)
+    throw std::invalid_argument("geohybrid pullout: '--seeds' = " + std::to_string(n_seeds) +
+                                " must be at least 1");
+  const auto start_time = std::chrono::steady_clock::now();
+  // The input as the single runs read it: its output directory and first seed.
+  dealii::ParameterHandler prm;
+  declare_pullout_parameters(prm);
+  parse_input_file(prm, input_file);
+  prm.enter_subsection("Filling");
+  const long first_seed = prm.get_integer("seed");
+  const long n_particles = prm.get_integer("number of particles");
+  prm.leave_subsection();
+  const std::string mode = prm.get("mode");
+  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
+  write_resolved_parameters(prm, out);
+
+  std::vector<PulloutRunRecord> runs;
+  std::string seeds;
+  for (int k = 0; k < n_seeds; ++k)
+    {
+      const std::string seed = std::to_string(first_seed + k);
+      const std::filesystem::path directory = out / ("seed_" + seed);
+      std::cout << "geohybrid pullout: seed " << seed << " (" << k + 1 << " of " << n_seeds << ") in "
+                << directory.string() << std::endl;
+      run_pullout_command(input_file, false, {{"output directory", directory.string()}, {"Filling/seed", seed}});
+      runs.push_back(read_pullout_run(directory));
+      seeds += (k ? ", " : "") + seed;
+    }
+
+  // The curves, row by row.
+  const std::size_t n_rows = runs.front().curve.size();
+  for (const PulloutRunRecord &run : runs)
+    if (run.curve.size() != n_rows)
+      throw std::runtime_error("geohybrid pullout --seeds: " + (run.directory / "pullout_curve.csv").string() + " has " +
+                               std::to_string(run.curve.size()) + " rows, " +
+                               (runs.front().directory / "pullout_curve.csv").string() + " " +
+                               std::to_string(n_rows));
+  std::ofstream curve(out / "pullout_curve.csv");
+  curve << "head_displacement_m,head_tension_kN_per_m,head_tension_min_kN_per_m,head_tension_max_kN_per_m,"
+           "head_tension_std_kN_per_m\n";
+  for (std::size_t r = 0; r < n_rows; ++r)
+    {
+      // Each run records at the first step past the same displacement: they differ by less than
+      // one step's travel, so the row's displacement is their mean.
+      std::vector<double> u, T;
+      for (const PulloutRunRecord &run : runs)
+        {
+          u.push_back(run.curve[r][0]);
+          T.push_back(run.curve[r][1]);
+        }
+      const Spread s = spread_of(T);
+      curve << std::setprecision(10) << spread_of(u).mean << ',' << s.mean << ',' << s.min << ',' << s.max << ','
+            << s.std << '\n';
+    }
+  if (!curve.flush())
+    throw std::runtime_error("cannot write " + (out / "pullout_curve.csv").string());
+  curve.close();
+
+  std::vector<PlotSeries> series{{out / "pullout_curve.csv", 1, 3, "min - max over the seeds", 1e3, 1.0,
+                                  "filledcurves fs transparent solid 0.25 noborder", {4}},
+                                 {out / "pullout_curve.csv", 1, 2, "mean", 1e3, 1.0, "lines lw 3", {}}};
+  for (const PulloutRunRecord &run : runs)
+    series.push_back({run.directory / "pullout_curve.csv", 1, 2, "seed " + run.directory.filename().string().substr(5), 1e3, 1.0,
+                      "lines lw 1 dt 2", {}});
+  plot_png(out / "pullout_curve.png", "Pull-out, head tension over " + std::to_string(n_seeds) + " seeds",
+           {{"head displacement [mm]", "head tension [kN/m]", series, ""}});
+
+  std::vector<double> T_max;
+  for (const PulloutRunRecord &run : runs)
+    T_max.push_back(run.max_head_tension_kN);
+  const Spread t = spread_of(T_max);
+  Summary summary;
+  summary.set("command", "pullout --seeds");
+  summary.set("mode", mode);
+  summary.set("T_max_kN_per_m", t.mean);
+  summary.set("T_max_std_kN_per_m", t.std);
+  summary.set("T_max_min_kN_per_m", t.min);
+  summary.set("T_max_max_kN_per_m", t.max);
+  summary.set("seeds", seeds);
+  summary.set("n_seeds", static_cast<double>(n_seeds));
+  summary.set("n_particles", static_cast<double>(n_particles));
+  summary.set("wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count());
+  summary.write(out / "summary.json");
+  std::cout << "geohybrid pullout: T_max = " << t.mean << " +/- " << t.std << " kN/m over seeds " << seeds
+            << "\nresults in " << out.string() << '\n';
+  return 0;
+}
+} // namespace geohybrid::apps
