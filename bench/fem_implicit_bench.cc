@@ -10,6 +10,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <iostream>
 #include <string>
 
@@ -44,12 +45,16 @@ int main(int argc, char **argv)
       p.pullout.soil.young_modulus = 20e6;
       p.pullout.soil.poisson_ratio = 0.3;
       p.pullout.soil.strength = {38.4, 1e3, 10.0};
+      if (const char *kind = std::getenv("FEM_BENCH_SOIL"); kind != nullptr && std::string(kind) == "elastic")
+        p.pullout.soil.kind = SoilModelKind::linear_elastic; // to tell the soil's share of the cost
       p.pullout.soil_density = 15.2e3 / 9.81;
       p.pullout.element_degree = 1;
       p.pullout.final_displacement = std::stod(argv[3]);
       p.displacement_increment = std::stod(argv[4]);
       p.pullout.output_interval = p.displacement_increment;
       p.minimum_increment = 1e-3 * p.displacement_increment;
+      if (const char *rtol = std::getenv("FEM_BENCH_NEWTON_RTOL"))
+        p.newton.relative_tolerance = std::stod(rtol);
       QuasiStaticPullout problem(mesh, p, "implicit pull-out bench");
       const auto set_up = std::chrono::steady_clock::now();
       const PulloutResult r = problem.run();
@@ -83,6 +88,18 @@ int main(int argc, char **argv)
           for (const auto &point : r.curve)
             std::cout << " " << 1e3 * point.head_displacement << ":" << point.head_tension;
           std::cout << std::endl;
+          std::cout << "newton_per_step=";
+          for (const auto &step : problem.report().steps)
+            std::cout << " " << step.n_iterations;
+          std::cout << std::endl;
+          if (std::getenv("FEM_BENCH_VERBOSE"))
+            for (const auto &step : problem.report().steps)
+              {
+                std::cout << "step to " << step.time << " m:";
+                for (const double r : step.relative_residuals)
+                  std::cout << " " << r;
+                std::cout << std::endl;
+              }
         }
     }
   catch (const std::exception &e)
