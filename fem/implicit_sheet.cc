@@ -19,6 +19,8 @@ ImplicitSheet::ImplicitSheet(const DisplacementSpace &space, const TrussSheet &s
   owns_dofs_ = dealii::Utilities::MPI::this_mpi_process(comm) + 1 == dealii::Utilities::MPI::n_mpi_processes(comm);
   soil_points_ = locate_sheet_in_soil(space_, sheet_, where);
   trial_shear_stress_.assign(sheet_.n_nodes(), 0.0);
+  sliding_.assign(sheet_.n_nodes(), false);
+  trial_sliding_.assign(sheet_.n_nodes(), false);
   shear_stress_.assign(sheet_.n_nodes(), 0.0);
 }
 
@@ -77,8 +79,16 @@ void ImplicitSheet::for_each_element(const dealii::PETScWrappers::MPI::Vector &d
       const Force t = sheet_.tangent(k), normal({-t[1], t[0]});
       const double two_L = 2.0 * sheet_.tributary_length(k); // both faces
       const double sigma_nn = sheet_normal_stress(material_points, p, normal);
-      const InterfaceShearUpdate shear = law_.shear(shear_stress_[k], gap_increment * t, sigma_nn);
+      const double slip_increment = gap_increment * t;
+      InterfaceShearUpdate shear = law_.shear(shear_stress_[k], slip_increment, sigma_nn);
+      // Before any slip in the step (the predictor), a face that slid in the last step sits at
+      // its limit, where tau(ds) has two one-sided derivatives; take the sliding one (the
+      // pull-out goes on in the same direction), not k_s, which would drag the soil with the
+      // sheet in the predictor and leave Newton to undo it.
+      if (slip_increment == 0.0 && sliding_[k])
+        shear.tangent = 0.0;
       trial_shear_stress_[k] = shear.shear_stress;
+      trial_sliding_[k] = shear.sliding;
 
       // The sheet node's resisting force f_g and its derivative K_g with respect to g.
       const Force f_g = two_L * (shear.shear_stress * t + law_.normal_stiffness() * (gap * normal) * normal);
@@ -149,5 +159,6 @@ void ImplicitSheet::commit()
     if (soil_points_[k].owned)
       shared[k] = trial_shear_stress_[k];
   dealii::Utilities::MPI::sum(shared, space_.communicator(), shear_stress_);
+  sliding_ = trial_sliding_;
 }
 } // namespace geohybrid::fem

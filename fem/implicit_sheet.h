@@ -91,5 +91,6 @@ private:
   std::vector<SheetSoilPoint> soil_points_;
   std::vector<double> trial_shear_stress_; ///< of the last assembly, on the node's owner
   std::vector<double> shear_stress_;       ///< committed, on every rank
+  std::vector<bool> trial_sliding_, sliding_; ///< of the last assembly / committed, on the node's owner
 };
 } // namespace geohybrid::fem
