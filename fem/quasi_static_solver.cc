@@ -52,28 +52,85 @@ QuasiStaticSolver::QuasiStaticSolver(const dealii::parallel::distributed::Triang
   boundary_conditions_.validate(mesh, "quasi-static solver");
   material_points_.initialise(mesh, space_.cell_quadrature().size());
 
+  x_component_dofs_ = dealii::DoFTools::extract_dofs(space_.dof_handler(), dealii::ComponentMask(std::vector<bool>{true, false}));
+  setup_system();
+}
+
+dealii::AffineConstraints<double> QuasiStaticSolver::base_constraints() const
+{
+  dealii::AffineConstraints<double> constraints(relevant_dofs_);
+  dealii::DoFTools::make_hanging_node_constraints(space_.dof_handler(), constraints);
+  return constraints;
+}
+
+void QuasiStaticSolver::setup_system()
+{
+  // The sheet's DoFs follow the soil's and belong to the last rank, which owns the soil's last
+  // block: every rank's range stays contiguous, as PETSc needs. Every rank sees them all.
+  const auto n_soil = space_.dof_handler().n_dofs();
+  const auto n_total = n_soil + (sheet_ ? sheet_->n_dofs() : 0);
+  owned_dofs_ = dealii::IndexSet(n_total);
+  owned_dofs_.add_indices(space_.locally_owned_dofs());
+  relevant_dofs_ = dealii::IndexSet(n_total);
+  relevant_dofs_.add_indices(space_.locally_relevant_dofs());
+  if (sheet_)
+    {
+      relevant_dofs_.add_range(n_soil, n_total);
+      if (sheet_->owns_dofs())
+        owned_dofs_.add_range(n_soil, n_total);
+    }
+  owned_dofs_.compress();
+  relevant_dofs_.compress();
+
   // The DoFs with a prescribed displacement are the same at every step; only their values change.
-  homogeneous_constraints_ = space_.hanging_node_constraints();
+  homogeneous_constraints_ = base_constraints();
   for (const auto &d : boundary_conditions_.displacements)
     dealii::VectorTools::interpolate_boundary_values(space_.mapping(), space_.dof_handler(), d.boundary_id,
                                                      dealii::Functions::ZeroFunction<dim>(dim),
                                                      homogeneous_constraints_,
                                                      dealii::ComponentMask(std::vector<bool>{d.constrain_x, d.constrain_y}));
+  if (sheet_)
+    sheet_->add_clamp_constraints(homogeneous_constraints_, time_, nullptr);
   homogeneous_constraints_.close();
-  x_component_dofs_ = dealii::DoFTools::extract_dofs(space_.dof_handler(), dealii::ComponentMask(std::vector<bool>{true, false}));
 
-  const auto &owned = space_.locally_owned_dofs();
-  const auto &relevant = space_.locally_relevant_dofs();
   const MPI_Comm comm = space_.communicator();
-  dealii::DynamicSparsityPattern pattern(relevant);
+  dealii::DynamicSparsityPattern pattern(relevant_dofs_);
   dealii::DoFTools::make_sparsity_pattern(space_.dof_handler(), pattern, homogeneous_constraints_, false);
-  dealii::SparsityTools::distribute_sparsity_pattern(pattern, owned, comm, relevant);
-  tangent_.reinit(owned, owned, pattern, comm);
+  if (sheet_)
+    sheet_->for_each_coupling([&](const std::vector<dealii::types::global_dof_index> &dofs) {
+      homogeneous_constraints_.add_entries_local_to_global(dofs, pattern, false);
+    });
+  dealii::SparsityTools::distribute_sparsity_pattern(pattern, owned_dofs_, comm, relevant_dofs_);
+  tangent_.reinit(owned_dofs_, owned_dofs_, pattern, comm);
   for (auto *v : {&newton_rhs_, &residual_, &internal_force_, &external_force_, &correction_, &increment_,
                   &displacement_owned_})
-    v->reinit(owned, comm);
-  increment_relevant_.reinit(owned, relevant, comm);
-  displacement_.reinit(owned, relevant, comm);
+    v->reinit(owned_dofs_, comm);
+  increment_relevant_.reinit(owned_dofs_, relevant_dofs_, comm);
+  displacement_.reinit(owned_dofs_, relevant_dofs_, comm);
+}
+
+void QuasiStaticSolver::attach_sheet(const TrussSheet &sheet, std::vector<SheetClamp> clamps)
+{
+  if (time_ != 0.0)
+    throw std::logic_error("quasi-static solver: attach_sheet after the first load step (t = " +
+                           std::to_string(time_) + "); lay the sheet before loading");
+  sheet_ = std::make_unique<ImplicitSheet>(space_, sheet, std::move(clamps), space_.dof_handler().n_dofs(),
+                                           "quasi-static solver: sheet");
+  setup_system();
+}
+
+std::vector<dealii::Tensor<1, dim>> QuasiStaticSolver::sheet_displacements() const
+{
+  return sheet_ ? sheet_->node_displacements(displacement_) : std::vector<dealii::Tensor<1, dim>>();
+}
+
+dealii::Tensor<1, dim> QuasiStaticSolver::sheet_node_reaction(std::size_t node) const
+{
+  dealii::Tensor<1, dim> reaction;
+  if (sheet_ && sheet_->owns_dofs())
+    for (unsigned int c = 0; c < dim; ++c)
+      reaction[c] = internal_force_[sheet_->dof(node, c)] - external_force_[sheet_->dof(node, c)];
+  return dealii::Utilities::MPI::sum(reaction, space_.communicator());
 }
 
 void QuasiStaticSolver::set_initial_stress(const std::function<StressTensor(const dealii::Point<dim> &)> &stress,
@@ -92,7 +149,7 @@ void QuasiStaticSolver::set_initial_stress(const GeostaticStress &geostatic)
 dealii::AffineConstraints<double> QuasiStaticSolver::step_constraints(double new_time) const
 {
   // The increment of each prescribed displacement from the current (converged) one.
-  dealii::AffineConstraints<double> constraints = space_.hanging_node_constraints();
+  dealii::AffineConstraints<double> constraints = base_constraints();
   for (const auto &d : boundary_conditions_.displacements)
     {
       std::map<dealii::types::global_dof_index, double> values;
@@ -109,6 +166,8 @@ dealii::AffineConstraints<double> QuasiStaticSolver::step_constraints(double new
             constraints.set_inhomogeneity(dof, value - displacement_[dof]);
           }
     }
+  if (sheet_)
+    sheet_->add_clamp_constraints(constraints, new_time, &displacement_);
   constraints.close();
   return constraints;
 }
@@ -175,6 +234,16 @@ void QuasiStaticSolver::assemble(double time, const dealii::AffineConstraints<do
         internal_force_.add(dof_indices, cell_internal);
         external_force_.add(dof_indices, cell_external);
       }
+  if (sheet_)
+    sheet_->for_each_element(displacement_, increment_relevant_, material_points_,
+                             [&](const ImplicitSheet::LocalElement &element) {
+                               dealii::Vector<double> rhs(element.internal_force);
+                               rhs *= -1.0;
+                               constraints.distribute_local_to_global(element.tangent, rhs, element.dofs, tangent_,
+                                                                      newton_rhs_, true);
+                               homogeneous_constraints_.distribute_local_to_global(rhs, element.dofs, residual_);
+                               internal_force_.add(element.dofs, element.internal_force);
+                             });
   tangent_.compress(dealii::VectorOperation::add);
   for (auto *v : {&newton_rhs_, &residual_, &internal_force_, &external_force_})
     v->compress(dealii::VectorOperation::add);
@@ -301,6 +370,8 @@ LoadSteppingReport QuasiStaticSolver::advance_to(double end_time)
           displacement_owned_ += increment_;
           displacement_ = displacement_owned_;
           material_points_.commit();
+          if (sheet_)
+            sheet_->commit();
           time_ += step;
           report.steps.push_back(
             {time_, step, outcome.n_iterations, outcome.n_linear_iterations, outcome.relative_residuals});
@@ -341,6 +412,16 @@ dealii::Tensor<1, dim> QuasiStaticSolver::boundary_reaction(dealii::types::bound
 
 std::string QuasiStaticSolver::write_vtu(const std::string &directory, const std::string &basename, unsigned int step)
 {
-  return write_soil_vtu(space_, displacement_, material_points_, directory, basename, step);
+  if (!sheet_)
+    return write_soil_vtu(space_, displacement_, material_points_, directory, basename, step);
+  // The output shows the soil: its DoFs only, without the sheet's.
+  dealii::PETScWrappers::MPI::Vector soil_owned(space_.locally_owned_dofs(), space_.communicator());
+  for (const auto i : space_.locally_owned_dofs())
+    soil_owned[i] = displacement_owned_[i];
+  soil_owned.compress(dealii::VectorOperation::insert);
+  dealii::PETScWrappers::MPI::Vector soil(space_.locally_owned_dofs(), space_.locally_relevant_dofs(),
+                                          space_.communicator());
+  soil = soil_owned;
+  return write_soil_vtu(space_, soil, material_points_, directory, basename, step);
 }
 } // namespace geohybrid::fem

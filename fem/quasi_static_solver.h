@@ -11,18 +11,23 @@
 // run stops with a ConvergenceFailure that says what failed. Linear systems are PETSc MPI matrices
 // solved by CG (symmetric tangent) or GMRES (non-associated flow) with BoomerAMG.
 //
+// A truss sheet with its Mohr-Coulomb interface may be attached (attach_sheet): its nodes become
+// DoFs after the soil's, in the same PETSc system (fem/implicit_sheet.h).
+//
 // The mesh is a parallel::distributed::Triangulation; everything here is collective on its
 // communicator. Results do not depend on the number of ranks beyond the solver tolerances.
 #include "fem/boundary_conditions.h"
 #include "fem/constitutive/soil_model.h"
 #include "fem/displacement_space.h"
 #include "fem/geostatic_stress.h"
+#include "fem/implicit_sheet.h"
 #include "fem/material_point_history.h"
 
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -117,6 +122,19 @@ public:
                           const std::string &description);
   void set_initial_stress(const GeostaticStress &geostatic);
 
+  /// Lays a truss sheet in the soil, tied by its Mohr-Coulomb interface (fem/implicit_sheet.h);
+  /// `clamps` prescribe nodes' displacements as functions of the pseudo-time (the clamp of a
+  /// pull-out). The sheet's nodes become DoFs of the system after the soil's. Only before the
+  /// first step. Throws std::invalid_argument naming the sheet for a node outside the mesh, or
+  /// std::logic_error after a step. Collective.
+  void attach_sheet(const TrussSheet &sheet, std::vector<SheetClamp> clamps);
+  const ImplicitSheet *sheet() const { return sheet_.get(); } ///< nullptr without a sheet
+  /// The sheet's nodal displacements at the last converged step (every rank) [m].
+  std::vector<dealii::Tensor<1, dim>> sheet_displacements() const;
+  /// f_int - f_ext at sheet node k's DoFs, last converged step: at a clamp, the force the clamp
+  /// exerts to hold the node (the head tension of a pull-out) [N/m]. Collective.
+  dealii::Tensor<1, dim> sheet_node_reaction(std::size_t node) const;
+
   /// Advances the pseudo-time from time() to `end_time` in steps of at most the settings'
   /// increment, halving it on non-convergence. Throws ConvergenceFailure below the minimum.
   LoadSteppingReport advance_to(double end_time);
@@ -142,6 +160,11 @@ private:
     std::vector<double> relative_residuals;
     std::string failure; ///< why it did not converge
   };
+  /// Index sets, constraints without values, sparsity pattern, matrix and vectors, for the soil
+  /// and (if attached) the sheet.
+  void setup_system();
+  /// The hanging-node constraints on the relevant DoFs, sheet included.
+  dealii::AffineConstraints<double> base_constraints() const;
   NewtonOutcome solve_step(double new_time);
   dealii::AffineConstraints<double> step_constraints(double new_time) const;
   void assemble(double time, const dealii::AffineConstraints<double> &constraints);
@@ -154,6 +177,8 @@ private:
   QuasiStaticSettings settings_;
   DisplacementSpace space_;
   MaterialPointHistory material_points_;
+  std::unique_ptr<ImplicitSheet> sheet_;
+  dealii::IndexSet owned_dofs_, relevant_dofs_; ///< the soil's, plus the sheet's
   dealii::AffineConstraints<double> homogeneous_constraints_;
   dealii::IndexSet x_component_dofs_;
 

@@ -1,6 +1,7 @@
 #include "sheet_interface.h"
 
 #include "fem/constitutive/plane_strain_tensors.h"
+#include "fem/sheet_interface_law.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/grid/grid_tools.h>
@@ -12,6 +13,88 @@
 
 namespace geohybrid::fem
 {
+std::vector<SheetSoilPoint> locate_sheet_in_soil(const DisplacementSpace &space, const TrussSheet &sheet,
+                                                 const std::string &where)
+{
+  const std::size_t n = sheet.n_nodes();
+  std::vector<SheetSoilPoint> soil_points;
+  // A node on a cell edge or vertex touches several cells, and the soil stress (sigma_nn) is that
+  // of one of them: the one with the smallest CellId, whatever the partition, so that the result
+  // does not depend on the number of ranks. A rank that owns one of those cells also sees all the
+  // others (owned or ghost), so every such rank picks the same cell; its owner takes the node.
+  const MPI_Comm comm = space.communicator();
+  const unsigned int rank = dealii::Utilities::MPI::this_mpi_process(comm);
+  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+  const auto &fe = space.fe();
+  soil_points.resize(n);
+  std::vector<unsigned int> owner(n, n_ranks);
+  std::vector<dealii::Point<dim>> reference_points(n);
+  for (std::size_t k = 0; k < n; ++k)
+    {
+      std::vector<std::pair<dealii::DoFHandler<dim>::active_cell_iterator, dealii::Point<dim>>> around;
+      try
+        {
+          around = dealii::GridTools::find_all_active_cells_around_point(space.mapping(), space.dof_handler(),
+                                                                          sheet.node(k), 1e-10);
+        }
+      catch (...)
+        {
+          // Not in a cell this rank knows: another rank's node, or outside the mesh.
+        }
+      bool touches_own_cell = false;
+      for (const auto &c : around)
+        touches_own_cell = touches_own_cell || c.first->is_locally_owned();
+      if (!touches_own_cell)
+        continue;
+      const std::pair<dealii::DoFHandler<dim>::active_cell_iterator, dealii::Point<dim>> *chosen = nullptr;
+      for (const auto &c : around)
+        if (!c.first->is_artificial() && (chosen == nullptr || c.first->id() < chosen->first->id()))
+          chosen = &c;
+      if (chosen->first->is_locally_owned())
+        {
+          owner[k] = rank;
+          soil_points[k].cell = chosen->first;
+          reference_points[k] = dealii::GeometryInfo<dim>::project_to_unit_cell(chosen->second);
+        }
+    }
+  dealii::Utilities::MPI::min(owner, comm, owner);
+  for (std::size_t k = 0; k < n; ++k)
+    {
+      if (owner[k] == n_ranks)
+        {
+          std::ostringstream message;
+          message << where << ": node " << k << " at (" << sheet.node(k)[0] << ", " << sheet.node(k)[1]
+                  << ") m lies outside the soil mesh";
+          throw std::invalid_argument(message.str());
+        }
+      auto &p = soil_points[k];
+      p.owned = owner[k] == rank;
+      if (!p.owned)
+        continue;
+      const unsigned int n_dofs = fe.n_dofs_per_cell();
+      p.shape_values.resize(n_dofs);
+      p.components.resize(n_dofs);
+      p.dof_indices.resize(n_dofs);
+      p.cell->get_dof_indices(p.dof_indices);
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        {
+          p.components[i] = fe.system_to_component_index(i).first;
+          p.shape_values[i] = fe.shape_value(i, reference_points[k]);
+        }
+    }
+  return soil_points;
+}
+
+double sheet_normal_stress(MaterialPointHistory &material_points, const SheetSoilPoint &point,
+                           const dealii::Tensor<1, dim> &normal)
+{
+  double sigma_nn = 0.0;
+  const auto points = material_points.at(point.cell);
+  for (const auto &p : points)
+    sigma_nn += normal * (in_plane_part(p->stress) * normal);
+  return sigma_nn / points.size();
+}
+
 EmbeddedSheet::EmbeddedSheet(const DisplacementSpace &space, const TrussSheet &sheet, std::vector<SheetClamp> clamps,
                              const std::string &where)
   : space_(space), sheet_(sheet), clamps_(std::move(clamps))
@@ -32,70 +115,7 @@ EmbeddedSheet::EmbeddedSheet(const DisplacementSpace &space, const TrussSheet &s
   committed_gap_.assign(n, Force());
   shear_stress_.assign(n, 0.0);
 
-  // A node on a cell edge or vertex touches several cells, and the soil stress (sigma_nn) is that
-  // of one of them: the one with the smallest CellId, whatever the partition, so that the result
-  // does not depend on the number of ranks. A rank that owns one of those cells also sees all the
-  // others (owned or ghost), so every such rank picks the same cell; its owner takes the node.
-  const MPI_Comm comm = space_.communicator();
-  const unsigned int rank = dealii::Utilities::MPI::this_mpi_process(comm);
-  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
-  const auto &fe = space_.fe();
-  soil_points_.resize(n);
-  std::vector<unsigned int> owner(n, n_ranks);
-  std::vector<dealii::Point<dim>> reference_points(n);
-  for (std::size_t k = 0; k < n; ++k)
-    {
-      std::vector<std::pair<dealii::DoFHandler<dim>::active_cell_iterator, dealii::Point<dim>>> around;
-      try
-        {
-          around = dealii::GridTools::find_all_active_cells_around_point(space_.mapping(), space_.dof_handler(),
-                                                                          sheet_.node(k), 1e-10);
-        }
-      catch (...)
-        {
-          // Not in a cell this rank knows: another rank's node, or outside the mesh.
-        }
-      bool touches_own_cell = false;
-      for (const auto &c : around)
-        touches_own_cell = touches_own_cell || c.first->is_locally_owned();
-      if (!touches_own_cell)
-        continue;
-      const std::pair<dealii::DoFHandler<dim>::active_cell_iterator, dealii::Point<dim>> *chosen = nullptr;
-      for (const auto &c : around)
-        if (!c.first->is_artificial() && (chosen == nullptr || c.first->id() < chosen->first->id()))
-          chosen = &c;
-      if (chosen->first->is_locally_owned())
-        {
-          owner[k] = rank;
-          soil_points_[k].cell = chosen->first;
-          reference_points[k] = dealii::GeometryInfo<dim>::project_to_unit_cell(chosen->second);
-        }
-    }
-  dealii::Utilities::MPI::min(owner, comm, owner);
-  for (std::size_t k = 0; k < n; ++k)
-    {
-      if (owner[k] == n_ranks)
-        {
-          std::ostringstream message;
-          message << where << ": node " << k << " at (" << sheet_.node(k)[0] << ", " << sheet_.node(k)[1]
-                  << ") m lies outside the soil mesh";
-          throw std::invalid_argument(message.str());
-        }
-      auto &p = soil_points_[k];
-      p.owned = owner[k] == rank;
-      if (!p.owned)
-        continue;
-      const unsigned int n_dofs = fe.n_dofs_per_cell();
-      p.shape_values.resize(n_dofs);
-      p.components.resize(n_dofs);
-      p.dof_indices.resize(n_dofs);
-      p.cell->get_dof_indices(p.dof_indices);
-      for (unsigned int i = 0; i < n_dofs; ++i)
-        {
-          p.components[i] = fe.system_to_component_index(i).first;
-          p.shape_values[i] = fe.shape_value(i, reference_points[k]);
-        }
-    }
+  soil_points_ = locate_sheet_in_soil(space_, sheet_, where);
 }
 
 double EmbeddedSheet::stable_time_step() const
@@ -121,8 +141,7 @@ void EmbeddedSheet::compute_forces(const Vector &soil_displacement, MaterialPoin
                                    Vector &soil_internal_force)
 {
   const std::size_t n = sheet_.n_nodes();
-  const auto &interface = sheet_.parameters().interface;
-  const double tan_delta = std::tan(degrees_to_radians(interface.friction_angle_deg));
+  const SheetInterfaceLaw law(sheet_.parameters().interface);
   // Packed for one MPI sum: the interface force (2 per node), then tau (1 per node).
   std::vector<double> shared(3 * n, 0.0);
   for (std::size_t k = 0; k < n; ++k)
@@ -138,17 +157,12 @@ void EmbeddedSheet::compute_forces(const Vector &soil_displacement, MaterialPoin
       const Force normal({-t[1], t[0]});
       const double L = sheet_.tributary_length(k);
 
-      double sigma_nn = 0.0;
-      const auto points = material_points.at(p.cell);
-      for (const auto &point : points)
-        sigma_nn += normal * (in_plane_part(point->stress) * normal);
-      sigma_nn /= points.size();
-      const double limit = interface.cohesion + std::max(0.0, -sigma_nn) * tan_delta;
+      const double sigma_nn = sheet_normal_stress(material_points, p, normal);
       const double slip_increment = (gap - committed_gap_[k]) * t;
-      const double tau = std::clamp(shear_stress_[k] + interface.shear_stiffness * slip_increment, -limit, limit);
+      const double tau = law.shear(shear_stress_[k], slip_increment, sigma_nn).shear_stress;
       committed_gap_[k] = gap;
 
-      const Force force = -2.0 * L * (tau * t + interface.normal_stiffness * (gap * normal) * normal);
+      const Force force = -2.0 * L * (tau * t + law.normal_stiffness() * (gap * normal) * normal);
       shared[2 * k] = force[0];
       shared[2 * k + 1] = force[1];
       shared[2 * n + k] = tau;

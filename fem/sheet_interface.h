@@ -31,6 +31,30 @@
 
 namespace geohybrid::fem
 {
+/// Where a sheet node sits in the soil, on the rank that computes its interface: the soil cell,
+/// the soil's shape functions there, and the cell's DoFs.
+struct SheetSoilPoint
+{
+  bool owned = false; ///< this rank computes the node's interface
+  dealii::DoFHandler<dim>::active_cell_iterator cell;
+  std::vector<double> shape_values;                       ///< N_i(X_k) of the cell's DoFs
+  std::vector<unsigned int> components;                   ///< the component of each cell DoF
+  std::vector<dealii::types::global_dof_index> dof_indices;
+};
+
+/// Locates every node of `sheet` in `space`'s mesh. A node on a cell edge or vertex touches
+/// several cells, and the soil stress (sigma_nn) is that of one of them: the one with the smallest
+/// CellId, whatever the partition, and its owner takes the node, so that results do not depend
+/// on the number of ranks. Throws std::invalid_argument naming `where` if a node lies outside the
+/// mesh. Collective.
+std::vector<SheetSoilPoint> locate_sheet_in_soil(const DisplacementSpace &space, const TrussSheet &sheet,
+                                                 const std::string &where);
+
+/// The soil's normal stress n.sigma.n on the sheet's plane at a node: the mean over the committed
+/// stresses of the quadrature points of its cell (tension positive) [Pa].
+double sheet_normal_stress(MaterialPointHistory &material_points, const SheetSoilPoint &point,
+                           const dealii::Tensor<1, dim> &normal);
+
 /// A node of the sheet held at a displacement d(t) (the clamp of a pull-out test).
 struct SheetClamp
 {
@@ -77,20 +101,11 @@ public:
   double interface_shear_stress(std::size_t k) const { return shear_stress_[k]; }
 
 private:
-  struct SoilPoint
-  {
-    bool owned = false;
-    dealii::DoFHandler<dim>::active_cell_iterator cell;
-    std::vector<double> shape_values;                       ///< N_i(X_k) of the cell's DoFs
-    std::vector<unsigned int> components;                   ///< the component of each cell DoF
-    std::vector<dealii::types::global_dof_index> dof_indices;
-  };
-
   const DisplacementSpace &space_;
   TrussSheet sheet_;
   std::vector<SheetClamp> clamps_;
   std::vector<bool> clamped_;
-  std::vector<SoilPoint> soil_points_;
+  std::vector<SheetSoilPoint> soil_points_;
   std::vector<Force> displacement_, velocity_, truss_force_, interface_force_;
   std::vector<Force> committed_gap_; ///< relative displacement at the last step (owner only)
   std::vector<double> shear_stress_; ///< tau per face (shared)

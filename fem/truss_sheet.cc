@@ -92,4 +92,19 @@ std::vector<TrussSheet::Force> TrussSheet::nodal_forces(const std::vector<Force>
       }
   return forces;
 }
+
+dealii::Tensor<2, dim> TrussSheet::segment_stiffness(const std::vector<Force> &u, std::size_t s) const
+{
+  const Force d = (nodes_[s + 1] + u[s + 1]) - (nodes_[s] + u[s]);
+  const double l = d.norm(), l0 = rest_lengths_[s], J = parameters_.axial_stiffness;
+  dealii::Tensor<2, dim> K;
+  if (l < l0)
+    return K;
+  const Force e = d / l;
+  const double T = J * (l / l0 - 1.0);
+  K = (J / l0 - T / l) * dealii::outer_product(e, e);
+  for (unsigned int i = 0; i < dim; ++i)
+    K[i][i] += T / l;
+  return K;
+}
 } // namespace geohybrid::fem

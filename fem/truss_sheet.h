@@ -69,6 +69,12 @@ public:
   std::vector<double> axial_forces(const std::vector<Force> &u) const;
   /// The force the segments exert on each node for displacements `u` [N/m].
   std::vector<Force> nodal_forces(const std::vector<Force> &u) const;
+  /// The consistent tangent of segment s for displacements `u`: K = (J / l0) e x e + (T / l)
+  /// (I - e x e), e the current unit direction, so that the resisting forces of its nodes change
+  /// by [K -K; -K K] [du_s; du_s+1]. Zero when slack (l < l0): a slack segment carries nothing
+  /// and resists nothing. At l = l0 exactly (the unstretched start) it is the taut one, J / l0
+  /// along the segment [N/m^2].
+  dealii::Tensor<2, dim> segment_stiffness(const std::vector<Force> &u, std::size_t s) const;
 
 private:
   std::vector<dealii::Point<dim>> nodes_;

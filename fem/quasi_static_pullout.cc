@@ -1,0 +1,142 @@
+#include "quasi_static_pullout.h"
+
+#include "fem/constitutive/parameter_check.h"
+#include "fem/tank_mesh.h"
+
+#include <deal.II/base/function_lib.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace geohybrid::fem
+{
+void QuasiStaticPulloutParameters::validate(const std::string &where) const
+{
+  pullout.validate(where);
+  require_parameter(displacement_increment > 0.0 && displacement_increment <= pullout.output_interval, where,
+                    "displacement increment", displacement_increment, "must lie in (0, output interval] [m]");
+  require_parameter(minimum_increment > 0.0 && minimum_increment <= displacement_increment, where,
+                    "minimum displacement increment", minimum_increment,
+                    "must be positive and at most the displacement increment [m]");
+}
+
+QuasiStaticPullout::QuasiStaticPullout(const dealii::parallel::distributed::Triangulation<dim> &mesh,
+                                       const QuasiStaticPulloutParameters &parameters, const std::string &where)
+  : parameters_(parameters)
+{
+  parameters_.validate(where);
+  const PulloutProblemParameters &p = parameters_.pullout;
+  const SoilModel soil(p.soil, where + ": soil");
+
+  // The coarse cells are on every rank, and refinement does not move a straight tank's walls: the
+  // box of the mesh's vertices is the tank, the same on every rank.
+  const auto box = dealii::GridTools::compute_bounding_box(mesh);
+  tank_length_ = box.side_length(0);
+  tank_height_ = box.side_length(1);
+  x_front_ = box.get_boundary_points().second[0];
+  y_top_ = box.get_boundary_points().second[1];
+  const double tolerance = 1e-9 * std::max(tank_length_, tank_height_);
+  if (p.sheet_length > tank_length_ + tolerance)
+    {
+      std::ostringstream message;
+      message << where << ": parameter 'sheet length L' = " << p.sheet_length << " m is longer than the tank ("
+              << tank_length_ << " m, from the mesh)";
+      throw std::invalid_argument(message.str());
+    }
+  if (p.sheet_depth >= tank_height_ - tolerance)
+    {
+      std::ostringstream message;
+      message << where << ": parameter 'sheet depth H' = " << p.sheet_depth
+              << " m puts the sheet at or below the tank's bottom (the soil is " << tank_height_
+              << " m high, from the mesh)";
+      throw std::invalid_argument(message.str());
+    }
+
+  BoundaryConditions bc;
+  bc.displacements = {{tank_boundary::bottom, true, true, nullptr},
+                      {tank_boundary::back_wall, true, false, nullptr},
+                      {tank_boundary::front_wall, true, false, nullptr}};
+  if (p.surcharge > 0.0)
+    bc.pressures = {{tank_boundary::top, std::make_shared<dealii::Functions::ConstantFunction<dim>>(p.surcharge)}};
+
+  QuasiStaticSettings settings;
+  settings.element_degree = p.element_degree;
+  settings.density = p.soil_density;
+  settings.gravity = dealii::Tensor<1, dim>({0.0, -p.gravity});
+  settings.newton = parameters_.newton;
+  settings.linear_solver = parameters_.linear_solver;
+  settings.stepping.increment = parameters_.displacement_increment;
+  settings.stepping.minimum_increment = parameters_.minimum_increment;
+  solver_ = std::make_unique<QuasiStaticSolver>(mesh, soil, bc, settings);
+
+  geostatic_.surface_elevation = y_top_;
+  geostatic_.unit_weight = p.soil_density * p.gravity;
+  geostatic_.k0 = p.k0 > 0.0 ? p.k0 : soil.default_k0();
+  geostatic_.surcharge = p.surcharge;
+  geostatic_.validate(where + ": geostatic stress");
+  solver_->set_initial_stress(geostatic_);
+
+  // The sheet as PulloutProblem lays it: from the front wall (node 0, the clamp) back over L.
+  const double y_sheet = y_top_ - p.sheet_depth;
+  const auto n_segments =
+    static_cast<unsigned int>(std::max(1.0, std::ceil(p.sheet_length / p.sheet_node_spacing * (1.0 - 1e-12))));
+  std::vector<dealii::Point<dim>> nodes;
+  for (unsigned int k = 0; k <= n_segments; ++k)
+    nodes.emplace_back(x_front_ - p.sheet_length * k / n_segments, y_sheet);
+  clamp_node_ = 0;
+  // The pseudo-time is the head displacement.
+  solver_->attach_sheet(TrussSheet(nodes, p.sheet, where + ": sheet"),
+                        {{clamp_node_, [](double t) { return dealii::Tensor<1, dim>({t, 0.0}); }}});
+}
+
+PulloutResult QuasiStaticPullout::run()
+{
+  const PulloutProblemParameters &p = parameters_.pullout;
+  PulloutResult result;
+  result.tank_length = tank_length_;
+  result.tank_height = tank_height_;
+  result.vertical_stress_at_sheet = -geostatic_.stress_at(dealii::Point<dim>(x_front_, y_top_ - p.sheet_depth))[1][1];
+  const auto record = [&]() {
+    result.curve.push_back({solver_->sheet_displacements()[clamp_node_][0], solver_->sheet_node_reaction(clamp_node_)[0]});
+  };
+  const auto write_snapshot = [&]() {
+    const std::string name = solver_->write_vtu(p.snapshot_directory, "pullout", result.snapshots.size());
+    result.snapshots.push_back(p.snapshot_directory + "/" + name);
+  };
+  // The state before the pull: the solver has assembled nothing yet, so the clamp's reaction is
+  // that of the unloaded sheet, zero.
+  result.curve.push_back({0.0, 0.0});
+  const bool snapshots = !p.snapshot_directory.empty();
+  if (snapshots)
+    write_snapshot();
+
+  report_ = LoadSteppingReport();
+  const double end = p.final_displacement, tolerance = 1e-9 * p.output_interval;
+  double next_output = std::min(p.output_interval, end);
+  double next_snapshot = snapshots ? std::min(p.snapshot_interval, end) : 2.0 * end;
+  while (solver_->time() < end - tolerance)
+    {
+      const double target = std::min(next_output, next_snapshot);
+      const LoadSteppingReport stage = solver_->advance_to(target);
+      report_.steps.insert(report_.steps.end(), stage.steps.begin(), stage.steps.end());
+      report_.n_cutbacks += stage.n_cutbacks;
+      if (std::abs(solver_->time() - next_output) <= tolerance)
+        {
+          record();
+          next_output = std::min(next_output + p.output_interval, end);
+        }
+      if (snapshots && std::abs(solver_->time() - next_snapshot) <= tolerance)
+        {
+          write_snapshot();
+          next_snapshot = std::min(next_snapshot + p.snapshot_interval, end);
+        }
+      // At the end both targets stay at `end`; the loop condition stops.
+    }
+  result.n_steps = report_.steps.size();
+  for (const auto &point : result.curve)
+    result.max_head_tension = std::max(result.max_head_tension, point.head_tension);
+  return result;
+}
+} // namespace geohybrid::fem
