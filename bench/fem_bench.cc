@@ -79,11 +79,12 @@ int main(int argc, char **argv)
   MPI_Barrier(MPI_COMM_WORLD);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const unsigned int ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  const double out_of_balance = solver.out_of_balance_ratio(); // collective
   if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     std::cout << "degree=Q" << degree << " soil=" << soil_name << " cells=" << mesh.n_global_active_cells()
               << " dofs=" << solver.space().dof_handler().n_dofs() << " ranks=" << ranks << " steps=" << steps
               << " time_step_s=" << solver.time_step() << " seconds=" << seconds
               << " us_per_step_per_cell=" << 1e6 * seconds / (steps * mesh.n_global_active_cells())
-              << " out_of_balance=" << solver.out_of_balance_ratio() << std::endl;
+              << " out_of_balance=" << out_of_balance << std::endl;
   return 0;
 }

@@ -4,6 +4,7 @@
 // 2 sigma_v tan(delta) L, bad input (and the wrap-around, not available in fem mode) refused by
 // name before anything is written, and (under mpirun -np 2, test_app_pullout_fem_np2) the 1-rank
 // curve on 2 ranks.
+#include "apps/compare_command.h"
 #include "apps/pullout_command.h"
 
 #include <deal.II/base/mpi.h>
@@ -166,6 +167,13 @@ TEST(PullOutFemMode, WritesTheContractAndReachesTheInterfaceLimit)
   EXPECT_NEAR(summary_number(summary, "geostatic_interface_limit_kN_per_m"), limit / 1e3, 1e-9 * limit);
   EXPECT_NEAR(T_max, limit, 0.03 * limit);
   EXPECT_NEAR(1e3 * rows.back().second, limit, 0.03 * limit); // a plateau, not a peak
+
+  // `geohybrid compare` takes the directory as a finished pull-out run of mode fem (its legend
+  // shows the mode).
+  const auto record = geohybrid::apps::read_pullout_run(out);
+  EXPECT_EQ(record.mode, "fem");
+  EXPECT_EQ(record.n_points, rows.size());
+  EXPECT_NEAR(record.max_head_tension_kN, T_max / 1e3, 1e-9 * T_max);
   fs::remove_all(d);
 }
 
