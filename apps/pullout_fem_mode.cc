@@ -232,11 +232,7 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
   if (writer)
     std::cout << "geohybrid pullout: " << anchorage_name(g) << ", H = " << number(g.cover, 4) << " m, L = "
-              << number(g.anchorage_length, 4) << " m"
-              << (g.anchorage == dem::Anchorage::wrap_around
-                    ? ", D1 = " + number(g.return_height, 4) + " m, B = " + number(g.upper_length, 4) + " m"
-                    : std::string())
-              << "; mode fem: " << mesh.n_global_active_cells() << " Q" << c.problem.element_degree << " cells ("
+              << number(g.anchorage_length, 4) << " m; mode fem: " << mesh.n_global_active_cells() << " Q" << c.problem.element_degree << " cells ("
               << (c.mesh_file.empty() ? "generated" : c.mesh_file) << "), " << fem::to_string(c.problem.soil.kind)
               << " soil, time step " << number(problem.solver().time_step(), 4) << " s, " << n_ranks
               << " MPI rank" << (n_ranks > 1 ? "s" : "") << std::endl;
