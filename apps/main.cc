@@ -6,6 +6,7 @@
 //   geohybrid calibrate FILE.prm           contact friction, kn, ks/kn fitted to target phi', E (nu)
 //   geohybrid pullout FILE.prm             pull-out of a geosynthetic anchored in the INSA tank
 //   geohybrid pullout FILE.prm --seeds N   the same on N fills (seeds s, s+1, ...), averaged
+//   mpirun -np N geohybrid pullout FILE.prm  the same with 'mode = fem' on N MPI ranks
 //   geohybrid compare DIR1 DIR2 ... [--output FILE.png]   pull-out curves of result directories in one PNG
 //   geohybrid COMMAND --print-parameters   every parameter of COMMAND with default, unit, doc
 //
@@ -18,6 +19,7 @@
 #include "apps/pullout_command.h"
 #include "apps/pullout_seeds.h"
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <cstring>
@@ -45,7 +47,7 @@ const std::map<std::string, Command> &commands()
                  geohybrid::apps::declare_biaxial_parameters, geohybrid::apps::run_biaxial_command}},
     {"calibrate", {"fit contact friction, kn and ks/kn to a target friction angle, E (and nu) by biaxial runs",
                    geohybrid::apps::declare_calibrate_parameters, geohybrid::apps::run_calibrate_command}},
-    {"pullout", {"pull-out test of a geosynthetic in the INSA tank: simple run-out or wrap-around (mode = dem)",
+    {"pullout", {"pull-out test of a geosynthetic in the INSA tank: simple run-out or wrap-around (mode = dem or fem)",
                  geohybrid::apps::declare_pullout_parameters,
                  [](const std::string &file, bool resume) { return geohybrid::apps::run_pullout_command(file, resume); }}},
   };
@@ -70,6 +72,9 @@ void print_usage(std::ostream &out)
 
 int main(int argc, char **argv)
 {
+  // MPI (and PETSc) for the continuum, which runs on the ranks of mpirun; a plain start is one
+  // rank. One thread per rank for deal.II's own tasks (the DEM's OpenMP threads are its own).
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h"))
     {
       print_usage(std::cout);

@@ -1,4 +1,4 @@
-// `geohybrid pullout`: the pull-out test of the reference paper (sections 4.3-4.5). The tank is
+// `geohybrid pullout`: the pull-out test of the reference paper (sections 4.3-4.5). In dem mode the tank is
 // filled in layers with the calibrated soil, the sheet laid at its depth on the lift below it;
 // then the clamp, outside the front wall, pulls the sheet horizontally at a set rate and the run
 // records the head tension (the clamp's reaction) against the head displacement.
@@ -8,21 +8,22 @@
 // side-wall friction carries part of the weight, and the sheet lies a little above its nominal
 // level (on the grains of the lift below), so sigma_v < gamma H is expected.
 //
-// Outputs, in the output directory:
-//   pullout_curve.csv        head_displacement_m,head_tension_kN_per_m (per metre of width)
-//   pullout_curve_sheet.csv  the same for the sheet's width b (kN), as the paper's Table 6
-//   sheet_displacements.csv  displacement of the sheet's beginning, middle and end of the anchorage
-//   sheet_tension.csv        tension along the sheet at the chosen head displacements
-//   pullout_curve.png        the curve, with the experimental T_max if given
-//   pullout_fields.h5/.xdmf, grain_displacements_u*mm.csv/.png, force_network_u*mm.csv/.png,
-//   surface_uplift.csv/.png  the soil's fields at 'Output/field outputs at' (pullout_field_output.h)
-//   parameters.prm, summary.json (written last)
+// mode = dem is this file (below); mode = fem, the same test with a deal.II continuum for the
+// soil, is pullout_fem_mode.cc. Both read this input (declare_pullout_parameters, parse_pullout)
+// and write the same files through apps/pullout_output.h, plus parameters.prm and summary.json
+// (written last). In dem mode, also the soil's fields at 'Output/field outputs at'
+// (pullout_field_output.h): pullout_fields.h5/.xdmf, grain_displacements_u*mm.csv/.png,
+// force_network_u*mm.csv/.png, surface_uplift.csv/.png.
 #include "pullout_command.h"
 
 #include "contact_parameters.h"
-#include "plot.h"
+#include "pullout_fem_mode.h"
 #include "pullout_field_output.h"
+#include "pullout_input.h"
+#include "pullout_output.h"
 #include "run_directory.h"
+
+#include <deal.II/base/mpi.h>
 
 #include "dem/measurements.h"
 #include "dem/pullout_tank.h"
@@ -57,10 +58,12 @@ void declare_pullout_parameters(ParameterHandler &prm)
   };
   prm.declare_entry("output directory", "output/pullout", Patterns::Anything(),
                     "Directory for all results, created if needed, relative to the working directory");
-  prm.declare_entry("threads", "2", Patterns::Integer(1, 256), "Number of threads [-]");
+  prm.declare_entry("threads", "2", Patterns::Integer(1, 256),
+                    "Number of OpenMP threads; dem mode only (fem mode runs on the MPI ranks of mpirun) [-]");
   prm.declare_entry("mode", "dem", Patterns::Selection("dem|fem|hybrid"),
-                    "Soil model: dem (discrete elements everywhere); fem (continuum) and hybrid (DEM near the "
-                    "sheet, continuum elsewhere) are not available yet [-]");
+                    "Soil model: dem (discrete elements everywhere, subsections Filling and Soil/Particle contact); "
+                    "fem (a deal.II continuum, subsection Continuum); hybrid (DEM near the sheet, continuum "
+                    "elsewhere) is not available yet. Both modes write the same result files [-]");
 
   prm.enter_subsection("Tank");
   prm.declare_entry("length", text(g.tank_length), Patterns::Double(1e-6),
@@ -69,14 +72,17 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.declare_entry("fill height", text(g.fill_height), Patterns::Double(1e-6),
                     "Height of the soil surface above the base (H plus the soil below the sheet) [m]");
   prm.declare_entry("wall friction angle", text(g.wall_friction_deg), Patterns::Double(0.0, 89.99),
-                    "Soil-wall friction angle (measured: 28 degrees, section 4.3) [deg]");
+                    "Soil-wall friction angle (measured: 28 degrees, section 4.3); dem mode only (the continuum's "
+                    "walls are smooth) [deg]");
   prm.declare_entry("clamp offset", text(g.clamp_offset), Patterns::Double(1e-6),
-                    "Distance of the clamp (the sheet's first node) outside the front wall [m]");
+                    "Distance of the clamp (the sheet's first node) outside the front wall; dem mode only (the "
+                    "continuum's clamp is the sheet's node at the front wall) [m]");
   prm.leave_subsection();
 
   prm.enter_subsection("Anchorage");
   prm.declare_entry("type", "simple run-out", Patterns::Selection("simple run-out|wrap-around"),
-                    "Simple run-out (L, H) or wrap-around (L, D1, D2, B, H = D1 + D2), section 2.2 [-]");
+                    "Simple run-out (L, H) or wrap-around (L, D1, D2, B, H = D1 + D2), section 2.2; fem mode takes the "
+                    "simple run-out only [-]");
   prm.declare_entry("H", text(g.cover), Patterns::Double(1e-6), "Soil above the lower part of the sheet [m]");
   prm.declare_entry("L", text(g.anchorage_length), Patterns::Double(1e-6),
                     "Length of the lower part of the sheet in the soil, from the front wall [m]");
@@ -93,10 +99,11 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "b, width of the sheet in the bench, for the per-sheet outputs (INSA: 0.5 m) [m]");
   prm.declare_entry("axial stiffness", text(sheet.axial_stiffness), Patterns::Double(1e-6),
                     "J per metre of width (GT230: 2104 kN/m, GT75: 687 kN/m, Table 2) [N/m]");
-  prm.declare_entry("thickness", text(sheet.thickness), Patterns::Double(1e-9), "For contact (GT230: 3.2 mm) [m]");
+  prm.declare_entry("thickness", text(sheet.thickness), Patterns::Double(1e-9), "For contact (GT230: 3.2 mm); dem mode only (the continuum's sheet has no thickness) [m]");
   prm.declare_entry("areal mass", text(sheet.areal_mass), Patterns::Double(1e-9),
                     "Mass per unit area (GT230: 620 g/m2) [kg/m^2]");
-  prm.declare_entry("segment length", "0.01", Patterns::Double(1e-6), "Longest spar element [m]");
+  prm.declare_entry("segment length", "0.01", Patterns::Double(1e-6),
+                    "Longest spar element; dem mode only (fem: 'Continuum/sheet node spacing') [m]");
   prm.enter_subsection("Interface");
   declare_contact_parameters(prm, dem::default_interface_parameters());
   prm.leave_subsection();
@@ -105,7 +112,7 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.enter_subsection("Soil");
   prm.declare_entry("unit weight", "15.2e3", Patterns::Double(1e-6),
                     "gamma of the soil at the fill's porosity (sand 1: 15.2 kN/m3, Table 1); sets the grains' "
-                    "density gamma / (g (1 - n)) [N/m^3]");
+                    "density gamma / (g (1 - n)) in dem mode, the continuum's density gamma / g in fem mode [N/m^3]");
   prm.enter_subsection("Particle contact");
   declare_contact_parameters(prm, dem::ContactParameters());
   prm.leave_subsection();
@@ -144,7 +151,7 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.declare_entry("sheet local damping", text(pull.sheet_local_damping), Patterns::Double(0.0, 0.99),
                     "Local damping of the sheet's nodes while pulling (the grains keep 'Filling/local damping'): "
                     "damping a sheet that slides one way through fluctuating contacts drags it whatever the rate, "
-                    "so 0 by default [-]");
+                    "so 0 by default; dem mode only (fem: 'Continuum/local damping' acts on soil and sheet) [-]");
   prm.declare_entry("tension profiles at", "0.006, 0.06", Patterns::List(Patterns::Double(0.0)),
                     "Head displacements at which the tension along the sheet is written [m]");
   prm.leave_subsection();
@@ -157,8 +164,11 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "contact-force network, an HDF5/XDMF snapshot and the surface uplift are written (the "
                     "paper's Figures 10-12); empty = none [m]");
   prm.declare_entry("stress band", "0.05", Patterns::Double(1e-6),
-                    "Height of the soil band above the sheet where the Love-Weber vertical stress is measured [m]");
+                    "Height of the soil band above the sheet where the Love-Weber vertical stress is measured; dem "
+                    "mode only [m]");
   prm.leave_subsection();
+
+  declare_continuum_parameters(prm);
 }
 
 namespace
@@ -170,18 +180,9 @@ std::string number(double value, int digits = 12)
   s << std::setprecision(digits) << value;
   return s.str();
 }
+} // namespace
 
-struct PullOutInput
-{
-  dem::PullOutTankSpec tank;
-  dem::PullSpec pull;
-  std::vector<double> profiles_at;
-  std::vector<double> fields_at; ///< [m]
-  std::optional<double> experimental_T_max; ///< [N/m]
-  double stress_band = 0.05;
-};
-
-PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where)
+PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool dem_mode)
 {
   PullOutInput in;
   dem::PullOutGeometry &g = in.tank.geometry;
@@ -266,31 +267,25 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where)
     in.fields_at.push_back(std::stod(item));
   prm.leave_subsection();
 
-  in.tank.validate(where);
+  if (dem_mode)
+    in.tank.validate(where);
+  else
+    in.tank.geometry.validate(where);
   if (in.pull.record_interval > in.pull.final_displacement)
     throw std::invalid_argument(where + ": 'Pull/record interval' = " + number(in.pull.record_interval) +
                                 " m is longer than 'Pull/final displacement' = " + number(in.pull.final_displacement) +
                                 " m");
   return in;
 }
-} // namespace
 
-int run_pullout_command(const std::string &input_file, bool resume, const ParameterOverrides &overrides)
+namespace
 {
-  if (resume)
-    throw std::invalid_argument("geohybrid pullout: --resume is not supported yet; rerun the input");
-  ParameterHandler prm;
-  declare_pullout_parameters(prm);
-  parse_input_file(prm, input_file);
-  for (const auto &[path, value] : overrides)
-    set_parameter(prm, path, value);
-  const std::string where = "input file '" + input_file + "'";
-  const std::string mode = prm.get("mode");
-  if (mode != "dem")
-    throw std::invalid_argument(where + ": 'mode' = " + mode +
-                                " is not yet available (the continuum and the coupling are not written); use "
-                                "'set mode = dem'");
-  const PullOutInput in = parse_pullout(prm, where);
+/// mode = dem: the tank filled with particles, then pulled.
+int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where)
+{
+  if (dealii::Utilities::MPI::job_supports_mpi() && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    throw std::invalid_argument(where + ": 'mode' = dem runs in one process (its threads: 'threads'); run it "
+                                "without mpirun, or use 'set mode = fem'");
   const dem::PullOutGeometry &g = in.tank.geometry;
 
   const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
@@ -327,40 +322,26 @@ int run_pullout_command(const std::string &input_file, bool resume, const Parame
             << number(gamma_H / 1e3, 4) << " kPa" << std::endl;
 
   // 2. The pull.
-  std::ofstream curve(out / "pullout_curve.csv"), per_sheet(out / "pullout_curve_sheet.csv"),
-    displacements(out / "sheet_displacements.csv"), profiles(out / "sheet_tension.csv");
-  curve << "head_displacement_m,head_tension_kN_per_m\n";
-  per_sheet << "head_displacement_m,head_tension_kN\n";
-  displacements << "head_displacement_m,beginning_displacement_m,middle_displacement_m,end_displacement_m\n";
-  profiles << "head_displacement_m,node,arc_length_m,x_m,y_m,tension_kN_per_m\n";
+  PulloutOutput output(out, g.sheet_width, in.profiles_at);
   const std::size_t middle = (tank.first_node_inside + tank.lower_part_end) / 2;
   const dem::ParticleSet &grains = system.particles();
   // Surface strips two disc diameters wide: a cluster's centre lies between its discs, so strips
   // one disc wide may hold no centre of a surface grain.
   PullOutFieldOutput fields(out, in.fields_at, g.tank_length,
                             4.0 * *std::max_element(grains.disc_radius.begin(), grains.disc_radius.end()));
-  std::size_t next_profile = 0;
-  double T_max = 0.0, u_at_T_max = 0.0;
   ProgressReport progress("pulling", in.pull.final_displacement);
   const auto record = [&](const dem::PullPoint &p, const dem::DemSystem &s) {
     const dem::SparSheet &sheet = s.sheets()[0];
-    curve << std::setprecision(10) << p.head_displacement << ',' << p.head_tension / 1e3 << '\n';
-    per_sheet << std::setprecision(10) << p.head_displacement << ',' << p.head_tension * g.sheet_width / 1e3 << '\n';
     const auto moved = [&](std::size_t k) { return sheet.x[k] - tank.initial_nodes[k].x(); };
-    displacements << std::setprecision(10) << p.head_displacement << ',' << moved(tank.first_node_inside) << ','
-                  << moved(middle) << ',' << moved(tank.lower_part_end) << '\n';
-    while (next_profile < in.profiles_at.size() && p.head_displacement >= in.profiles_at[next_profile] - 1e-12)
+    output.add_point(p.head_displacement, p.head_tension,
+                     {{moved(tank.first_node_inside), moved(middle), moved(tank.lower_part_end)}});
+    if (output.profile_due(p.head_displacement))
       {
+        std::vector<SheetTensionRow> rows;
         for (std::size_t k = 0; k < sheet.n_segments(); ++k)
-          profiles << std::setprecision(10) << p.head_displacement << ',' << k << ','
-                   << 0.5 * (tank.arc_length[k] + tank.arc_length[k + 1]) << ',' << 0.5 * (sheet.x[k] + sheet.x[k + 1])
-                   << ',' << 0.5 * (sheet.y[k] + sheet.y[k + 1]) << ',' << sheet.tension[k] / 1e3 << '\n';
-        ++next_profile;
-      }
-    if (p.head_tension > T_max)
-      {
-        T_max = p.head_tension;
-        u_at_T_max = p.head_displacement;
+          rows.push_back({k, 0.5 * (tank.arc_length[k] + tank.arc_length[k + 1]), 0.5 * (sheet.x[k] + sheet.x[k + 1]),
+                          0.5 * (sheet.y[k] + sheet.y[k + 1]), sheet.tension[k]});
+        output.add_profile(p.head_displacement, rows);
       }
     fields.record(p.head_displacement, s);
     progress.update(p.head_displacement);
@@ -368,35 +349,14 @@ int run_pullout_command(const std::string &input_file, bool resume, const Parame
   dem::pull_out(system, in.pull, record);
   progress.finish();
   fields.finish();
-  for (std::ofstream *f : {&curve, &per_sheet, &displacements, &profiles})
-    if (!f->flush())
-      throw std::runtime_error("cannot write the results in " + out.string());
 
   // 3. The plot, with the experimental T_max as a horizontal line if given.
-  std::vector<PlotSeries> series{{out / "pullout_curve.csv", 1, 2, "DEM", 1e3, 1.0}};
-  if (in.experimental_T_max)
-    {
-      const std::filesystem::path line = out / "experimental_T_max.csv";
-      std::ofstream f(line);
-      f << "head_displacement_m,T_max_kN_per_m\n0," << number(*in.experimental_T_max / 1e3) << '\n'
-        << number(in.pull.final_displacement) << ',' << number(*in.experimental_T_max / 1e3) << '\n';
-      series.push_back({line, 1, 2, "experiment, T_max", 1e3, 1.0});
-    }
-  plot_png(out / "pullout_curve.png", "Pull-out, head tension", {{"head displacement [mm]", "head tension [kN/m]", series}});
+  output.finish("DEM", in.experimental_T_max, in.pull.final_displacement);
+  const double T_max = output.max_head_tension(), u_at_T_max = output.head_displacement_at_max();
 
   const double wall_time = seconds();
   Summary summary;
-  summary.set("command", "pullout");
-  summary.set("mode", "dem");
-  summary.set("anchorage", g.anchorage == dem::Anchorage::wrap_around ? "wrap-around" : "simple run-out");
-  summary.set("T_max_kN_per_m", T_max / 1e3);
-  summary.set("T_max_kN_for_sheet_width", T_max * g.sheet_width / 1e3);
-  summary.set("head_displacement_at_T_max_m", u_at_T_max);
-  if (in.experimental_T_max)
-    {
-      summary.set("experimental_T_max_kN_per_m", *in.experimental_T_max / 1e3);
-      summary.set("T_max_difference_percent", 100.0 * (T_max / *in.experimental_T_max - 1.0));
-    }
+  output.fill_summary(summary, "dem", anchorage_name(g), in.experimental_T_max);
   summary.set("n_particles", static_cast<double>(system.particles().n_bodies()));
   summary.set("n_sheet_nodes", static_cast<double>(system.sheets()[0].n_nodes()));
   summary.set("sheet_level_m", tank.sheet_level);
@@ -416,5 +376,30 @@ int run_pullout_command(const std::string &input_file, bool resume, const Parame
             << (in.experimental_T_max ? "; experiment " + number(*in.experimental_T_max / 1e3, 4) + " kN/m" : std::string())
             << "; " << number(wall_time, 4) << " s\nresults in " << out.string() << '\n';
   return 0;
+}
+} // namespace
+
+int run_pullout_command(const std::string &input_file, bool resume, const ParameterOverrides &overrides)
+{
+  return run_pullout_command(input_file, resume, MPI_COMM_WORLD, overrides);
+}
+
+int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm communicator,
+                        const ParameterOverrides &overrides)
+{
+  if (resume)
+    throw std::invalid_argument("geohybrid pullout: --resume is not supported yet; rerun the input");
+  ParameterHandler prm;
+  declare_pullout_parameters(prm);
+  parse_input_file(prm, input_file);
+  for (const auto &[path, value] : overrides)
+    set_parameter(prm, path, value);
+  const std::string where = "input file '" + input_file + "'";
+  const std::string mode = prm.get("mode");
+  if (mode == "hybrid")
+    throw std::invalid_argument(where + ": 'mode' = hybrid is not yet available (the coupling is not written); use "
+                                "'set mode = dem' or 'set mode = fem'");
+  const PullOutInput in = parse_pullout(prm, where, mode == "dem");
+  return mode == "dem" ? run_pullout_dem_mode(prm, in, where) : run_pullout_fem_mode(prm, in, where, communicator);
 }
 } // namespace geohybrid::apps

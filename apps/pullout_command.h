@@ -1,9 +1,12 @@
 #pragma once
 // `geohybrid pullout FILE.prm`: a pull-out test of a geosynthetic anchored in the INSA tank
 // (reference paper, sections 2.2 and 4.3): simple run-out or wrap-around, head tension against
-// head displacement. 'mode = dem' runs the discrete model (dem/pullout_tank.h); the continuum
-// and hybrid modes share the input file and are not written yet.
+// head displacement. 'mode = dem' runs the discrete model (dem/pullout_tank.h), 'mode = fem' the
+// continuum (fem/pullout_problem.h, apps/pullout_fem_mode.h) from the same file, also under
+// mpirun; 'mode = hybrid' is not written yet.
 #include <deal.II/base/parameter_handler.h>
+
+#include <mpi.h>
 
 #include <string>
 #include <utility>
@@ -15,4 +18,8 @@ void declare_pullout_parameters(dealii::ParameterHandler &prm);
 /// Entries set after the input file is read, as (path, value): ("Filling/seed", "4").
 using ParameterOverrides = std::vector<std::pair<std::string, std::string>>;
 int run_pullout_command(const std::string &input_file, bool resume, const ParameterOverrides &overrides = {});
+/// The same with the continuum (mode = fem) on the ranks of `communicator` (the other form takes
+/// MPI_COMM_WORLD); dem mode runs in one process.
+int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm communicator,
+                        const ParameterOverrides &overrides = {});
 } // namespace geohybrid::apps

@@ -33,6 +33,8 @@ void PulloutProblemParameters::validate(const std::string &where) const
                     "must be zero or positive [Pa]");
   positive(pull_rate, "pull rate", "[m/s]");
   positive(final_displacement, "final displacement", "[m]");
+  require_parameter(ramp_displacement >= 0.0 && ramp_displacement < final_displacement, where,
+                    "ramp displacement", ramp_displacement, "must lie in [0, final displacement) [m]");
   require_parameter(output_interval > 0.0 && output_interval <= final_displacement, where, "output interval",
                     output_interval, "must lie in (0, final displacement] [m]");
   require_parameter(local_damping >= 0.0 && local_damping < 1.0, where, "local damping", local_damping,
@@ -46,31 +48,22 @@ void PulloutProblemParameters::validate(const std::string &where) const
 
 namespace
 {
-/// The bounding box of the mesh's vertices, the same on every rank.
-std::pair<dealii::Point<dim>, dealii::Point<dim>> mesh_bounds(const dealii::parallel::distributed::Triangulation<dim> &mesh)
+/// The straight parts of the sheet from the clamp, each divided into segments of at most
+/// `spacing`; returns the nodes, and sets `lower_part_end` to the node at the lower part's end.
+std::vector<dealii::Point<dim>> sheet_nodes(const std::vector<dealii::Point<dim>> &corners, double spacing,
+                                            std::size_t &lower_part_end)
 {
-  double lo[dim], hi[dim];
-  for (unsigned int d = 0; d < dim; ++d)
+  std::vector<dealii::Point<dim>> nodes{corners.front()};
+  for (std::size_t c = 0; c + 1 < corners.size(); ++c)
     {
-      lo[d] = std::numeric_limits<double>::max();
-      hi[d] = -std::numeric_limits<double>::max();
+      const double length = corners[c].distance(corners[c + 1]);
+      const auto n = static_cast<unsigned int>(std::max(1.0, std::ceil(length / spacing * (1.0 - 1e-12))));
+      for (unsigned int k = 1; k <= n; ++k)
+        nodes.push_back(corners[c] + (corners[c + 1] - corners[c]) * (static_cast<double>(k) / n));
+      if (c == 0)
+        lower_part_end = nodes.size() - 1;
     }
-  for (const auto &cell : mesh.active_cell_iterators())
-    if (cell->is_locally_owned())
-      for (const unsigned int v : cell->vertex_indices())
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            lo[d] = std::min(lo[d], cell->vertex(v)[d]);
-            hi[d] = std::max(hi[d], cell->vertex(v)[d]);
-          }
-  const MPI_Comm comm = mesh.get_communicator();
-  dealii::Point<dim> p_lo, p_hi;
-  for (unsigned int d = 0; d < dim; ++d)
-    {
-      p_lo[d] = dealii::Utilities::MPI::min(lo[d], comm);
-      p_hi[d] = dealii::Utilities::MPI::max(hi[d], comm);
-    }
-  return {p_lo, p_hi};
+  return nodes;
 }
 } // namespace
 
@@ -81,7 +74,7 @@ PulloutProblem::PulloutProblem(const dealii::parallel::distributed::Triangulatio
   parameters_.validate(where);
   const SoilModel soil(parameters_.soil, where + ": soil");
 
-  const auto [lo, hi] = mesh_bounds(mesh);
+  const auto [lo, hi] = mesh_extent(mesh);
   tank_length_ = hi[0] - lo[0];
   tank_height_ = hi[1] - lo[1];
   x_front_ = hi[0];
@@ -126,13 +119,20 @@ PulloutProblem::PulloutProblem(const dealii::parallel::distributed::Triangulatio
   geostatic_.validate(where + ": geostatic stress");
   solver_->set_initial_stress(geostatic_);
 
-  // The sheet from the front wall (node 0, the clamp) back over L, at depth H.
-  const double y_sheet = y_top_ - parameters_.sheet_depth;
-  const auto n_segments = static_cast<unsigned int>(
-    std::max(1.0, std::ceil(parameters_.sheet_length / parameters_.sheet_node_spacing * (1.0 - 1e-12))));
-  std::vector<dealii::Point<dim>> nodes;
-  for (unsigned int k = 0; k <= n_segments; ++k)
-    nodes.emplace_back(x_front_ - parameters_.sheet_length * k / n_segments, y_sheet);
+  // The sheet from the front wall (node 0, the clamp) back over L at depth H.
+  const double y_sheet = y_top_ - parameters_.sheet_depth, x_end = x_front_ - parameters_.sheet_length;
+  const std::vector<dealii::Point<dim>> corners{dealii::Point<dim>(x_front_, y_sheet), dealii::Point<dim>(x_end, y_sheet)};
+  const std::vector<dealii::Point<dim>> nodes = sheet_nodes(corners, parameters_.sheet_node_spacing, lower_part_end_);
+  arc_lengths_.assign(1, 0.0);
+  for (std::size_t k = 1; k < nodes.size(); ++k)
+    arc_lengths_.push_back(arc_lengths_.back() + nodes[k].distance(nodes[k - 1]));
+
+  // What the interface would hold if the whole sheet slid with the soil at rest.
+  const auto &interface = parameters_.sheet.interface;
+  const double tan_delta = std::tan(degrees_to_radians(interface.friction_angle_deg));
+  const double sigma_v = -geostatic_.stress_at(0.5 * (corners[0] + corners[1]))[1][1];
+  geostatic_limit_ = 2.0 * (interface.cohesion + sigma_v * tan_delta) * parameters_.sheet_length;
+  n_cells_ = mesh.n_global_active_cells();
 
   TrussSheetParameters sheet_parameters = parameters_.sheet;
   if (parameters_.automatic_mass_scaling)
@@ -146,13 +146,29 @@ PulloutProblem::PulloutProblem(const dealii::parallel::distributed::Triangulatio
       sheet_parameters.mass_scaling =
         std::max(1.0, 8.0 * std::pow(solver_->time_step() / unscaled.stable_time_step(), 2));
     }
-  const double rate = parameters_.pull_rate;
   clamp_node_ = 0;
   solver_->attach_sheet(TrussSheet(nodes, sheet_parameters, where + ": sheet"),
-                        {{clamp_node_, [rate](double t) { return dealii::Tensor<1, dim>({rate * t, 0.0}); }}});
+                        {{clamp_node_, [this](double t) { return dealii::Tensor<1, dim>({head_displacement_at(t), 0.0}); }}});
 }
 
-PulloutResult PulloutProblem::run()
+double PulloutProblem::head_displacement_at(double time) const
+{
+  // Over the ramp the speed rises linearly from 0 to the rate: d = v t^2 / (2 t_ramp).
+  const double v = parameters_.pull_rate, d_ramp = parameters_.ramp_displacement, t_ramp = 2.0 * d_ramp / v;
+  if (time < t_ramp)
+    return 0.5 * v * time * time / t_ramp;
+  return d_ramp + v * (time - t_ramp);
+}
+
+double PulloutProblem::time_of_head_displacement(double d) const
+{
+  const double v = parameters_.pull_rate, d_ramp = parameters_.ramp_displacement, t_ramp = 2.0 * d_ramp / v;
+  if (d < d_ramp)
+    return std::sqrt(2.0 * d * t_ramp / v);
+  return t_ramp + (d - d_ramp) / v;
+}
+
+PulloutResult PulloutProblem::run(const CurveObserver &observer)
 {
   PulloutResult result;
   result.tank_length = tank_length_;
@@ -161,12 +177,16 @@ PulloutResult PulloutProblem::run()
   result.vertical_stress_at_sheet = -geostatic_.stress_at(dealii::Point<dim>(x_front_, y_top_ - parameters_.sheet_depth))[1][1];
   const EmbeddedSheet &sheet = *solver_->sheet();
   result.sheet_mass_scaling = sheet.sheet().parameters().mass_scaling;
+  result.geostatic_interface_limit = geostatic_limit_;
+  result.n_cells = n_cells_;
 
   // The sheet is laid unstretched with an unloaded interface: the first point is the state before
   // the pull, as computed (zero up to round-off).
   result.curve.push_back({sheet.displacements()[clamp_node_][0], sheet.clamp_force(0)[0]});
+  if (observer)
+    observer(result.curve.back(), sheet);
 
-  const double end_time = parameters_.final_displacement / parameters_.pull_rate;
+  const double end_time = time_of_head_displacement(parameters_.final_displacement);
   const double interval = parameters_.output_interval;
   double next_output = interval, next_snapshot = parameters_.snapshot_interval;
   double sum_displacement = 0.0, sum_tension = 0.0;
@@ -189,6 +209,8 @@ PulloutResult PulloutProblem::run()
       if (head >= next_output * (1.0 - 1e-9) || last)
         {
           result.curve.push_back({sum_displacement / n_summed, sum_tension / n_summed});
+          if (observer)
+            observer(result.curve.back(), sheet);
           sum_displacement = sum_tension = 0.0;
           n_summed = 0;
           next_output += interval;
@@ -203,6 +225,12 @@ PulloutResult PulloutProblem::run()
   for (const auto &p : result.curve)
     result.max_head_tension = std::max(result.max_head_tension, p.head_tension);
   return result;
+}
+
+void make_pullout_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,
+                            double cell_size, const PulloutProblemParameters &p, const std::string &where)
+{
+  make_tank_mesh(mesh, length, height, cell_size, {}, {height - p.sheet_depth}, where);
 }
 
 void make_rectangular_tank(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,

@@ -11,8 +11,11 @@
 //   carries the surcharge q as a pressure;
 // - the sheet (fem/truss_sheet.h) lies at depth H below the top, from the front wall back into the
 //   tank over its length L, tied to the soil by the Mohr-Coulomb interface of
-//   fem/sheet_interface.h; its node at the front wall is the clamp;
-// - the clamp moves in +x at a constant rate (the pull), the soil and sheet are integrated by
+//   fem/sheet_interface.h; its node at the front wall is the clamp. (No wrap-around: the
+//   interface ties each node to the soil at its reference point with its reference tangent, so a
+//   node that slides past a corner of the sheet is pushed into the soil by the normal penalty and
+//   the head tension rises without a plateau; see fem/README.md, Known limits.)
+// - the clamp moves in +x at a constant rate, reached over a ramp (the pull), the soil and sheet are integrated by
 //   central differences with local damping (a quasi-static run: the rate and the damping are
 //   chosen so that halving the rate leaves the curve unchanged, tests/test_fem_pullout.cc);
 //   the default local damping is 0.3, not PFC's 0.7: local damping also acts on the sheet's nodes,
@@ -33,6 +36,7 @@
 
 #include <deal.II/distributed/tria.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,6 +49,10 @@ struct PulloutProblemParameters
   double sheet_length = 1.0;         ///< L, from the front wall into the tank, in (0, tank length] [m]
   double sheet_depth = 0.4;          ///< H, below the top surface, in (0, tank height) [m]
   double sheet_node_spacing = 0.0125; ///< the truss segments' length at most, > 0 [m]
+//   fem/sheet_interface.h; its node at the front wall is the clamp. (No wrap-around: the
+//   interface ties each node to the soil at its reference point with its reference tangent, so a
+//   node that slides past a corner of the sheet is pushed into the soil by the normal penalty and
+//   the head tension rises without a plateau; see fem/README.md, Known limits.)
 
   // Soil.
   SoilParameters soil;
@@ -64,6 +72,9 @@ struct PulloutProblemParameters
 
   // Pull.
   double pull_rate = 0.004;          ///< clamp velocity, > 0 [m/s]
+  /// The clamp's speed rises linearly from 0 to the rate over this head displacement, in
+  /// [0, final displacement) (as the DEM pull, dem/pullout_tank.h) [m].
+  double ramp_displacement = 0.0;
   double final_displacement = 0.06;  ///< head displacement at the end, > 0 [m]
   double output_interval = 0.5e-3;   ///< head displacement between curve points, in (0, final] [m]
   double local_damping = 0.3;        ///< alpha_l of the explicit solver, in [0, 1) (see above) [-]
@@ -88,6 +99,10 @@ struct PulloutResult
   std::vector<PulloutCurvePoint> curve; ///< starts at the unloaded sheet (0, 0)
   double max_head_tension = 0.0;        ///< T_max over the curve [N/m]
   double vertical_stress_at_sheet = 0.0; ///< geostatic sigma_v = q + gamma H, compressive positive [Pa]
+  /// 2 (c_i + sigma_v tan(delta)) L with the geostatic sigma_v at the sheet: the head tension
+  /// if the whole sheet slid with the soil at rest [N/m].
+  double geostatic_interface_limit = 0.0;
+  unsigned int n_cells = 0;             ///< of the soil mesh, on all ranks
   double tank_length = 0.0, tank_height = 0.0; ///< from the mesh [m]
   double time_step = 0.0;               ///< [s]
   double sheet_mass_scaling = 0.0;      ///< the factor used [-]
@@ -104,18 +119,45 @@ public:
   PulloutProblem(const dealii::parallel::distributed::Triangulation<dim> &mesh,
                  const PulloutProblemParameters &parameters, const std::string &where = "pull-out");
 
-  /// Pulls the clamp to the final displacement. Collective; every rank returns the same curve.
-  PulloutResult run();
+  // The clamp's motion refers to this object: it stays where it was built.
+  PulloutProblem(const PulloutProblem &) = delete;
+  PulloutProblem &operator=(const PulloutProblem &) = delete;
+
+  /// Called at every point of the curve with the point and the sheet as it is then.
+  using CurveObserver = std::function<void(const PulloutCurvePoint &, const EmbeddedSheet &)>;
+
+  /// Pulls the clamp to the final displacement. Collective; every rank returns the same curve
+  /// (and calls `observer` alike).
+  PulloutResult run(const CurveObserver &observer = {});
 
   const ExplicitSolver &solver() const { return *solver_; }
+  double tank_length() const { return tank_length_; } ///< from the mesh [m]
+  double tank_height() const { return tank_height_; } ///< from the mesh [m]
+  /// Sheet node 0 is the clamp at the front wall; this one is the far end of the lower part.
+  std::size_t lower_part_end() const { return lower_part_end_; }
+  /// Distance of each sheet node from the clamp along the sheet, as laid [m].
+  const std::vector<double> &arc_lengths() const { return arc_lengths_; }
+  /// The clamp's displacement along the pull at `time`, the ramp included [m].
+  double head_displacement_at(double time) const;
+  /// The time at which the clamp reaches head displacement `d` [s].
+  double time_of_head_displacement(double d) const;
 
 private:
   PulloutProblemParameters parameters_;
   double tank_length_ = 0.0, tank_height_ = 0.0, x_front_ = 0.0, y_top_ = 0.0;
   GeostaticStress geostatic_;
   std::unique_ptr<ExplicitSolver> solver_;
-  std::size_t clamp_node_ = 0;
+  double geostatic_limit_ = 0.0;
+  unsigned int n_cells_ = 0;
+  std::size_t clamp_node_ = 0, lower_part_end_ = 0;
+  std::vector<double> arc_lengths_;
 };
+
+/// The generated tank for `parameters` (fem/tank_mesh.h, make_tank_mesh): [0, length] x
+/// [0, height] of cells of about `cell_size`, a row of them centred on the sheet. Throws std::invalid_argument naming `where` and 'cell
+/// size' if the sheet lies too close to the bottom or the top for it. Collective.
+void make_pullout_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,
+                            double cell_size, const PulloutProblemParameters &parameters, const std::string &where);
 
 /// A rectangular tank [0, length] x [0, height] of nx x ny cells with the tank meshes' boundary
 /// ids (1 bottom, 2 front wall at x = length, 3 top, 4 back wall at x = 0), for tests and quick

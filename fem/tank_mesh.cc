@@ -1,9 +1,13 @@
 #include "tank_mesh.h"
 
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -47,5 +51,106 @@ void read_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, con
       }
   if (n_global_refinements > 0)
     mesh.refine_global(n_global_refinements);
+}
+} // namespace geohybrid::fem
+
+namespace geohybrid::fem
+{
+std::pair<dealii::Point<dim>, dealii::Point<dim>> mesh_extent(const dealii::parallel::distributed::Triangulation<dim> &mesh)
+{
+  double lo[dim], hi[dim];
+  for (unsigned int d = 0; d < dim; ++d)
+    {
+      lo[d] = std::numeric_limits<double>::max();
+      hi[d] = -std::numeric_limits<double>::max();
+    }
+  for (const auto &cell : mesh.active_cell_iterators())
+    if (cell->is_locally_owned())
+      for (const unsigned int v : cell->vertex_indices())
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lo[d] = std::min(lo[d], cell->vertex(v)[d]);
+            hi[d] = std::max(hi[d], cell->vertex(v)[d]);
+          }
+  const MPI_Comm comm = mesh.get_communicator();
+  dealii::Point<dim> p_lo, p_hi;
+  for (unsigned int d = 0; d < dim; ++d)
+    {
+      p_lo[d] = dealii::Utilities::MPI::min(lo[d], comm);
+      p_hi[d] = dealii::Utilities::MPI::max(hi[d], comm);
+    }
+  return {p_lo, p_hi};
+}
+
+namespace
+{
+/// The cell sizes along [0, extent] with a cell of `h` centred on every one of `centres`.
+std::vector<double> cell_sizes_around(double extent, double h, std::vector<double> centres, const char *axis,
+                                      const std::string &where)
+{
+  std::sort(centres.begin(), centres.end());
+  const double tolerance = 1e-9 * std::max(extent, h);
+  const auto refuse = [&](const std::string &why) {
+    std::ostringstream message;
+    message << where << ": parameter 'cell size' = " << h << " m: " << why
+            << "; choose a smaller cell size [m]";
+    throw std::invalid_argument(message.str());
+  };
+  std::vector<double> sizes;
+  // Fills [from, to] with cells of about h: a gap shorter than h / 2 cannot be meshed without a
+  // sliver cell, which would cut the explicit solver's stable step.
+  const auto fill = [&](double from, double to) {
+    const double gap = to - from;
+    if (gap < -tolerance)
+      refuse(std::string("the sheet's lines along ") + axis + " are closer than one cell to each other or to the tank's side");
+    const auto n = static_cast<unsigned int>(std::lround(std::max(0.0, gap) / h));
+    if (n == 0)
+      {
+        if (gap > tolerance)
+          refuse(std::string("a gap of ") + std::to_string(gap) + " m along " + axis +
+                 " between the sheet's lines and the tank's sides is thinner than half a cell");
+        return;
+      }
+    for (unsigned int k = 0; k < n; ++k)
+      sizes.push_back(gap / n);
+  };
+  double edge = 0.0;
+  for (const double c : centres)
+    {
+      fill(edge, c - 0.5 * h);
+      sizes.push_back(h);
+      edge = c + 0.5 * h;
+    }
+  fill(edge, extent);
+  return sizes;
+}
+} // namespace
+
+void make_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,
+                    double cell_size, std::vector<double> x_centres, std::vector<double> y_centres,
+                    const std::string &where)
+{
+  if (!(cell_size > 0.0) || !(cell_size <= std::min(length, height)))
+    {
+      std::ostringstream message;
+      message << where << ": parameter 'cell size' = " << cell_size << " m must be positive and at most the tank's "
+              << "length and height (" << length << " m, " << height << " m) [m]";
+      throw std::invalid_argument(message.str());
+    }
+  const std::vector<std::vector<double>> steps{cell_sizes_around(length, cell_size, std::move(x_centres), "x", where),
+                                               cell_sizes_around(height, cell_size, std::move(y_centres), "y", where)};
+  dealii::GridGenerator::subdivided_hyper_rectangle(mesh, steps, dealii::Point<dim>(0, 0),
+                                                    dealii::Point<dim>(length, height), true);
+  // colorize: 0 left, 1 right, 2 bottom, 3 top -> the tank's ids.
+  for (const auto &cell : mesh.active_cell_iterators())
+    for (const auto &face : cell->face_iterators())
+      if (face->at_boundary())
+        {
+          const auto id = face->boundary_id();
+          face->set_boundary_id(id == 0   ? tank_boundary::back_wall
+                                : id == 1 ? tank_boundary::front_wall
+                                : id == 2 ? tank_boundary::bottom
+                                          : tank_boundary::top);
+        }
 }
 } // namespace geohybrid::fem

@@ -9,6 +9,7 @@
 // the sheet passes through, 3 the top surface, 4 the back wall (x = 0).
 #include "fem/conventions.h"
 
+#include <deal.II/base/point.h>
 #include <deal.II/distributed/tria.h>
 
 #include <string>
@@ -34,4 +35,22 @@ void read_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, con
                                                                                              tank_boundary::bottom,
                                                                                              tank_boundary::top},
                     unsigned int n_global_refinements = 0);
+
+/// The lower-left and upper-right corners of the mesh's bounding box, the same on every rank.
+/// Collective.
+std::pair<dealii::Point<dim>, dealii::Point<dim>> mesh_extent(const dealii::parallel::distributed::Triangulation<dim> &mesh);
+
+/// A rectangular tank [0, length] x [0, height] with the tank meshes' boundary ids, of cells of
+/// about `cell_size`, whose columns are centred on the abscissae `x_centres` and whose rows on the
+/// ordinates `y_centres`: a sheet laid along those lines then runs through the middle of its cells
+/// rather than on their edges, so the interface reads the soil's stress at the sheet's level (the
+/// mean over a cell's Gauss points is the centre value of a linear field) and not that of the
+/// cells on one side. Each centred cell is cell_size wide; the gaps between them are divided into
+/// cells of between 1/2 and 3/2 of cell_size. Throws std::invalid_argument naming `where` and
+/// 'cell size' if a line lies closer than cell_size / 2 to the tank's side or two lines closer
+/// than cell_size to each other, or if a gap between them would need a cell thinner than cell_size / 2.
+/// Collective.
+void make_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,
+                    double cell_size, std::vector<double> x_centres, std::vector<double> y_centres,
+                    const std::string &where);
 } // namespace geohybrid::fem

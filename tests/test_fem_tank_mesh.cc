@@ -101,3 +101,35 @@ TEST(TankMesh, MissingFileAndUnknownBoundaryIdNameTheFile)
     EXPECT_THROW(read_tank_mesh(mesh, mesh_directory + "/insa_tank_runout.geo"), std::invalid_argument);
   }
 }
+
+// The generated tank (make_tank_mesh) puts a row of cells of exactly the cell size centred on
+// each given level, so that a sheet there runs through the middle of its cells; the other rows
+// stay between 1/2 and 3/2 of the cell size; a level too close to a side is refused by name.
+TEST(TankMesh, GeneratedTankCentresARowOnTheSheet)
+{
+  const double h = 0.025;
+  Mesh mesh(MPI_COMM_WORLD);
+  make_tank_mesh(mesh, 1.5, 0.6, h, {}, {0.21}, "generated tank");
+  EXPECT_EQ(mesh.get_boundary_ids(), (std::vector<dealii::types::boundary_id>{1, 2, 3, 4}));
+  EXPECT_NEAR(dealii::GridTools::volume(mesh), 1.5 * 0.6, 1e-12);
+  std::set<long> ys; // the rows' lower and upper edges, in um
+  for (const auto &v : mesh.get_vertices())
+    ys.insert(std::lround(v[1] * 1e6));
+  EXPECT_TRUE(ys.count(std::lround((0.21 - h / 2) * 1e6)) && ys.count(std::lround((0.21 + h / 2) * 1e6)));
+  for (auto a = ys.begin(), b = std::next(a); b != ys.end(); ++a, ++b)
+    {
+      EXPECT_GE(*b - *a, std::lround(0.5e6 * h) - 1);
+      EXPECT_LE(*b - *a, std::lround(1.5e6 * h) + 1);
+    }
+  EXPECT_EQ(mesh.n_global_active_cells() % 60, 0u); // 60 columns of 25 mm
+  Mesh refused(MPI_COMM_WORLD);
+  try
+    {
+      make_tank_mesh(refused, 1.5, 0.6, h, {}, {0.006}, "generated tank");
+      ADD_FAILURE() << "a level within half a cell of the bottom was accepted";
+    }
+  catch (const std::invalid_argument &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("generated tank: parameter 'cell size'"), std::string::npos) << e.what();
+    }
+}

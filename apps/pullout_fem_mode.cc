@@ -1,0 +1,302 @@
+#include "pullout_fem_mode.h"
+
+#include "apps/pullout_output.h"
+#include "apps/run_directory.h"
+
+#include "fem/pullout_problem.h"
+#include "fem/tank_mesh.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+namespace geohybrid::apps
+{
+using dealii::ParameterHandler;
+namespace Patterns = dealii::Patterns;
+
+void declare_continuum_parameters(ParameterHandler &prm)
+{
+  prm.enter_subsection("Continuum");
+  prm.declare_entry("mesh file", "", Patterns::Anything(),
+                    "fem mode only: a gmsh 2.2 .msh of the tank (e.g. meshes/insa_tank_runout.msh: quadrilaterals, "
+                    "walls tagged 1 bottom, 2 front, 3 top, 4 back), relative to the working directory; its extent "
+                    "must be 'Tank/length' x 'Tank/fill height'. Empty: a generated rectangle of that size with "
+                    "cells of 'cell size' [-]");
+  prm.declare_entry("cell size", "0.025", Patterns::Double(1e-4, 1.0),
+                    "fem mode only, generated mesh: the cells' size; the sheet's lower part (and a wrap-around's "
+                    "return and upper part) runs through the middle of a row (column) of cells, so the interface "
+                    "reads the soil's stress at the sheet's level [m]");
+  prm.declare_entry("sheet node spacing", "0.0125", Patterns::Double(1e-4, 1.0),
+                    "fem mode only (dem mode: 'Sheet/segment length'): the truss elements' length at most; keep it "
+                    "at about half the cell size: more nodes per cell tie each cell to more penalty springs, and the "
+                    "mass-scaled sheet's pull becomes noisy and overshoots (5 nodes per cell: +56 % on a 0.6 m x "
+                    "0.4 m tank, 2 per cell: +8 %) [m]");
+  prm.declare_entry("element degree", "1", Patterns::Integer(1, 2),
+                    "fem mode only: 1 (Q1, cheaper per step and per stable step) or 2 (Q2) [-]");
+  prm.declare_entry("soil model", "Mohr-Coulomb", Patterns::Selection("linear elastic|Mohr-Coulomb|Drucker-Prager"),
+                    "fem mode only: the continuum's constitutive law (Drucker-Prager is matched to Mohr-Coulomb in "
+                    "plane strain) [-]");
+  prm.declare_entry("Young modulus", "20e6", Patterns::Double(1e3, 1e12),
+                    "fem mode only: E; sand 1: 20 MPa from the triaxial tests at 10-50 kPa (section 4.2) [Pa]");
+  prm.declare_entry("Poisson ratio", "0.3", Patterns::Double(0.0, 0.49),
+                    "fem mode only: nu (not measured in the paper: 0.3, a usual value for sand) [-]");
+  prm.declare_entry("friction angle", "38.4", Patterns::Double(0.1, 89.9),
+                    "fem mode only: phi of the Mohr-Coulomb and Drucker-Prager soils; sand 1: 38.4 degrees "
+                    "(triaxial tests, section 4.2) [deg]");
+  prm.declare_entry("cohesion", "0", Patterns::Double(0.0, 1e9), "fem mode only: c; sand 1: none [Pa]");
+  prm.declare_entry("dilatancy angle", "8.4", Patterns::Double(0.0, 89.9),
+                    "fem mode only: psi, at most phi; the paper gives none: 8.4 = phi - 30 degrees is Bolton's "
+                    "(1986) estimate for a dense sand, a choice [deg]");
+  prm.declare_entry("K0", "0", Patterns::Double(0.0, 10.0),
+                    "fem mode only: sigma_h / sigma_v of the geostatic state; 0 takes 1 - sin(phi) (Jaky) for the "
+                    "plastic soils and nu / (1 - nu) for the elastic one [-]");
+  prm.declare_entry("local damping", "0.3", Patterns::Double(0.0, 0.99),
+                    "fem mode only: local (Cundall) damping of soil and sheet; 0.3 rather than PFC's 0.7 because "
+                    "it drags the sliding sheet (fem/pullout_problem.h) [-]");
+  prm.declare_entry("safety factor", "0.8", Patterns::Double(0.01, 1.0),
+                    "fem mode only: the time step over the soil's critical step [-]");
+  prm.declare_entry("interface cohesion", "0", Patterns::Double(0.0, 1e9),
+                    "fem mode only: c_i of the sheet's interface, tau <= c_i + sigma_n tan(delta) with delta "
+                    "'Sheet/Interface/friction angle' (the other Sheet/Interface entries are the DEM's) [Pa]");
+  prm.declare_entry("interface normal stiffness", "1e8", Patterns::Double(1.0, 1e14),
+                    "fem mode only: the penalty tying each face of the sheet to the soil (keep it below about E / "
+                    "cell size) [Pa/m]");
+  prm.declare_entry("interface shear stiffness", "1e8", Patterns::Double(1.0, 1e14),
+                    "fem mode only: the interface's elastic slip stiffness per face before sliding [Pa/m]");
+  prm.declare_entry("sheet mass scaling", "0", Patterns::Double(0.0, 1e12),
+                    "fem mode only: factor on the sheet nodes' inertial mass, at least 1; 0 takes 8 times the "
+                    "smallest that keeps them stable at the soil's step [-]");
+  prm.declare_entry("snapshot interval", "0", Patterns::Double(0.0, 10.0),
+                    "fem mode only: head displacement between VTU snapshots of the soil in OUTPUT/snapshots; "
+                    "0 = none [m]");
+  prm.leave_subsection();
+}
+
+namespace
+{
+std::string number(double value, int digits = 12)
+{
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s << std::setprecision(digits) << value;
+  return s.str();
+}
+
+struct ContinuumInput
+{
+  fem::PulloutProblemParameters problem;
+  std::string mesh_file;
+  double cell_size = 0.025;
+  double snapshot_interval = 0.0;
+};
+
+/// The shared sections mapped onto the continuum's problem, and subsection Continuum.
+ContinuumInput parse_continuum(ParameterHandler &prm, const PullOutInput &in, const std::string &where)
+{
+  ContinuumInput c;
+  fem::PulloutProblemParameters &p = c.problem;
+  const dem::PullOutGeometry &g = in.tank.geometry;
+  if (g.anchorage == dem::Anchorage::wrap_around)
+    throw std::invalid_argument(
+      where + ": 'Anchorage/type' = wrap-around is not available in fem mode (use 'set mode = dem'): the "
+              "continuum's sheet interface ties each node to the soil at its starting point along its starting "
+              "direction, so a node that slides round a corner of the sheet is pushed into the soil and the head "
+              "tension rises without a plateau (fem/README.md, Known limits)");
+  p.sheet_length = g.anchorage_length;
+  p.sheet_depth = g.cover;
+  p.soil_density = in.tank.unit_weight / p.gravity;
+  p.sheet.axial_stiffness = in.tank.sheet.axial_stiffness;
+  p.sheet.areal_mass = in.tank.sheet.areal_mass;
+  p.sheet.interface.friction_angle_deg = in.tank.sheet.interface.friction_angle_deg;
+  p.pull_rate = in.pull.rate;
+  p.final_displacement = in.pull.final_displacement;
+  p.output_interval = in.pull.record_interval;
+  p.ramp_displacement = in.pull.ramp_displacement;
+
+  prm.enter_subsection("Continuum");
+  c.mesh_file = prm.get("mesh file");
+  c.cell_size = prm.get_double("cell size");
+  p.sheet_node_spacing = prm.get_double("sheet node spacing");
+  p.element_degree = static_cast<unsigned int>(prm.get_integer("element degree"));
+  p.soil.kind = fem::soil_model_kind_from_string(prm.get("soil model"));
+  p.soil.young_modulus = prm.get_double("Young modulus");
+  p.soil.poisson_ratio = prm.get_double("Poisson ratio");
+  p.soil.strength.friction_angle_deg = prm.get_double("friction angle");
+  p.soil.strength.cohesion = prm.get_double("cohesion");
+  p.soil.strength.dilatancy_angle_deg = prm.get_double("dilatancy angle");
+  p.k0 = prm.get_double("K0");
+  p.local_damping = prm.get_double("local damping");
+  p.safety_factor = prm.get_double("safety factor");
+  p.sheet.interface.cohesion = prm.get_double("interface cohesion");
+  p.sheet.interface.normal_stiffness = prm.get_double("interface normal stiffness");
+  p.sheet.interface.shear_stiffness = prm.get_double("interface shear stiffness");
+  const double scaling = prm.get_double("sheet mass scaling");
+  c.snapshot_interval = prm.get_double("snapshot interval");
+  prm.leave_subsection();
+  if (scaling != 0.0 && scaling < 1.0)
+    throw std::invalid_argument(where + ": 'Continuum/sheet mass scaling' = " + number(scaling) +
+                                " must be 0 (automatic) or at least 1 [-]");
+  p.automatic_mass_scaling = scaling == 0.0;
+  p.sheet.mass_scaling = std::max(1.0, scaling);
+  return c;
+}
+
+/// The tank's mesh: read and checked against the Tank's size, or generated.
+void make_mesh(dealii::parallel::distributed::Triangulation<fem::dim> &mesh, const ContinuumInput &c,
+               const dem::PullOutGeometry &g, const std::string &where)
+{
+  if (c.mesh_file.empty())
+    {
+      fem::make_pullout_tank_mesh(mesh, g.tank_length, g.fill_height, c.cell_size, c.problem,
+                                  where + ", subsection Continuum");
+      return;
+    }
+  try
+    {
+      fem::read_tank_mesh(mesh, c.mesh_file);
+    }
+  catch (const std::invalid_argument &e)
+    {
+      throw std::invalid_argument(where + ": 'Continuum/mesh file' = '" + c.mesh_file + "': " + e.what());
+    }
+  const auto [lo, hi] = fem::mesh_extent(mesh);
+  const auto check = [&](double expected, double actual, const char *entry, const char *what) {
+    if (std::abs(expected - actual) > 1e-6 * expected)
+      throw std::invalid_argument(where + ": '" + entry + "' = " + number(expected) + " m does not match the mesh file '" +
+                                  c.mesh_file + "', whose soil is " + number(actual) + " m " + what +
+                                  " (make them agree, or leave 'Continuum/mesh file' empty for a generated mesh)");
+  };
+  check(g.tank_length, hi[0] - lo[0], "Tank/length", "long");
+  check(g.fill_height, hi[1] - lo[1], "Tank/fill height", "high");
+}
+
+/// Runs `f` on rank 0 only; an exception there is thrown on every rank, so that none waits.
+template <typename F>
+void on_rank_zero(MPI_Comm comm, F &&f)
+{
+  std::string failure;
+  if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
+    try
+      {
+        f();
+      }
+    catch (const std::exception &e)
+      {
+        failure = e.what();
+        if (failure.empty())
+          failure = "rank 0 failed";
+      }
+  failure = dealii::Utilities::MPI::broadcast(comm, failure, 0);
+  if (!failure.empty())
+    throw std::runtime_error(failure);
+}
+} // namespace
+
+int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, MPI_Comm comm)
+{
+  const auto start_time = std::chrono::steady_clock::now();
+  const auto seconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  };
+  const bool writer = dealii::Utilities::MPI::this_mpi_process(comm) == 0;
+  const dem::PullOutGeometry &g = in.tank.geometry;
+  ContinuumInput c = parse_continuum(prm, in, where);
+  const std::filesystem::path out = prm.get("output directory");
+  if (out.empty())
+    throw std::invalid_argument(where + ": parameter 'output directory' is empty");
+  if (c.snapshot_interval > 0.0)
+    {
+      c.problem.snapshot_directory = (out / "snapshots").string();
+      c.problem.snapshot_interval = c.snapshot_interval;
+    }
+
+  // Everything that can be refused is checked here, before a file is written.
+  dealii::parallel::distributed::Triangulation<fem::dim> mesh(comm);
+  make_mesh(mesh, c, g, where);
+  fem::PulloutProblem problem(mesh, c.problem, c.mesh_file.empty() ? where : where + ", mesh file '" + c.mesh_file + "'");
+
+  std::optional<PulloutOutput> output;
+  on_rank_zero(comm, [&] {
+    prepare_output_directory(out.string());
+    write_resolved_parameters(prm, out);
+    if (!c.problem.snapshot_directory.empty())
+      std::filesystem::create_directories(c.problem.snapshot_directory);
+    output.emplace(out, g.sheet_width, in.profiles_at);
+  });
+  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
+  if (writer)
+    std::cout << "geohybrid pullout: " << anchorage_name(g) << ", H = " << number(g.cover, 4) << " m, L = "
+              << number(g.anchorage_length, 4) << " m; mode fem: " << mesh.n_global_active_cells() << " Q" << c.problem.element_degree << " cells ("
+              << (c.mesh_file.empty() ? "generated" : c.mesh_file) << "), " << fem::to_string(c.problem.soil.kind)
+              << " soil, time step " << number(problem.solver().time_step(), 4) << " s, " << n_ranks
+              << " MPI rank" << (n_ranks > 1 ? "s" : "") << std::endl;
+
+  // The pull; rank 0 records every point of the curve as it comes.
+  std::optional<ProgressReport> progress;
+  if (writer)
+    progress.emplace("pulling", in.pull.final_displacement);
+  const std::size_t end = problem.lower_part_end(), middle = end / 2;
+  const auto record = [&](const fem::PulloutCurvePoint &point, const fem::EmbeddedSheet &sheet) {
+    if (!writer)
+      return;
+    const auto &u = sheet.displacements();
+    // The clamp (node 0) is the sheet's first node inside the tank: it sits on the front wall.
+    output->add_point(point.head_displacement, point.head_tension, {{u[0][0], u[middle][0], u[end][0]}});
+    // A profile is the sheet now, at the clamp's displacement now (the curve's point is the mean
+    // over its interval).
+    if (output->profile_due(u[0][0]))
+      {
+        const std::vector<double> T = sheet.axial_forces();
+        const auto &s = problem.arc_lengths();
+        std::vector<SheetTensionRow> rows;
+        for (std::size_t k = 0; k < T.size(); ++k)
+          {
+            const auto x = 0.5 * (sheet.sheet().node(k) + u[k] + sheet.sheet().node(k + 1) + u[k + 1]);
+            rows.push_back({k, 0.5 * (s[k] + s[k + 1]), x[0], x[1], T[k]});
+          }
+        output->add_profile(u[0][0], rows);
+      }
+    progress->update(point.head_displacement);
+  };
+  const fem::PulloutResult result = problem.run(record);
+
+  on_rank_zero(comm, [&] {
+    progress->finish();
+    output->finish("FEM", in.experimental_T_max, in.pull.final_displacement);
+    const double wall_time = seconds(), T_max = output->max_head_tension();
+    Summary summary;
+    output->fill_summary(summary, "fem", anchorage_name(g), in.experimental_T_max);
+    summary.set("n_particles", 0.0);
+    summary.set("n_cells", static_cast<double>(result.n_cells));
+    summary.set("element_degree", static_cast<double>(c.problem.element_degree));
+    summary.set("soil_model", fem::to_string(c.problem.soil.kind));
+    summary.set("mesh", c.mesh_file.empty() ? "generated, cell size " + number(c.cell_size) + " m" : c.mesh_file);
+    summary.set("n_sheet_nodes", static_cast<double>(problem.arc_lengths().size()));
+    summary.set("sigma_v_at_sheet_Pa", result.vertical_stress_at_sheet);
+    summary.set("gamma_H_Pa", in.tank.unit_weight * g.cover);
+    summary.set("geostatic_interface_limit_kN_per_m", result.geostatic_interface_limit / 1e3);
+    summary.set("T_max_over_geostatic_interface_limit", T_max / result.geostatic_interface_limit);
+    summary.set("time_step_s", result.time_step);
+    summary.set("n_steps", static_cast<double>(result.n_steps));
+    summary.set("sheet_mass_scaling", result.sheet_mass_scaling);
+    summary.set("n_mpi_ranks", static_cast<double>(n_ranks));
+    summary.set("wall_time_s", wall_time);
+    summary.write(out / "summary.json");
+    std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m ("
+              << number(T_max * g.sheet_width / 1e3, 4) << " kN for b = " << number(g.sheet_width, 3) << " m) at "
+              << number(1e3 * output->head_displacement_at_max(), 3) << " mm; geostatic interface limit "
+              << number(result.geostatic_interface_limit / 1e3, 4) << " kN/m"
+              << (in.experimental_T_max ? "; experiment " + number(*in.experimental_T_max / 1e3, 4) + " kN/m"
+                                        : std::string())
+              << "; " << result.n_steps << " steps, " << number(wall_time, 4) << " s\nresults in " << out.string()
+              << '\n';
+  });
+  return 0;
+}
+} // namespace geohybrid::apps

@@ -1,0 +1,37 @@
+#pragma once
+// `geohybrid pullout FILE.prm` with 'set mode = fem': the pull-out test with the soil as a deal.II
+// continuum (fem/pullout_problem.h: explicit solver, geostatic K0 soil, tension-only truss sheet
+// with its Mohr-Coulomb interface, the clamp pulled), from the same input file as the DEM run.
+//
+// What the two modes share keeps its meaning: Tank/length and fill height are the soil's extent,
+// Anchorage (simple run-out: L, H) the sheet, Sheet/J, areal mass and Interface/friction angle the
+// truss and its interface, Soil/unit weight the density, Pull (rate, ramp, final displacement,
+// record interval, tension profiles) the clamp's programme and the curve's points,
+// Output/experimental T_max the plot's line. What only the continuum needs is in subsection
+// Continuum (mesh, the sheet's node spacing, element degree, soil model with E, nu, phi, c, psi,
+// K0, damping, the interface's stiffnesses and cohesion). DEM-only entries (Filling, Soil/Particle
+// contact, wall friction, clamp offset, thickness, segment length, the sheet's contact
+// stiffnesses) are read but unused; their doc strings say so. A wrap-around is refused: the
+// continuum's interface cannot let a node slide round a corner (fem/README.md, Known limits).
+//
+// Runs on any number of MPI ranks (mpirun -np N geohybrid pullout FILE.prm); rank 0 writes every
+// file, through the same PulloutOutput as the DEM mode.
+#include "apps/pullout_input.h"
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <mpi.h>
+
+#include <string>
+
+namespace geohybrid::apps
+{
+/// Declares subsection Continuum (fem mode only), with the defaults for sand 1.
+void declare_continuum_parameters(dealii::ParameterHandler &prm);
+
+/// Runs the continuum pull-out of `in` (parsed from `prm`, the file named by `where`) on the ranks
+/// of `communicator`. Collective; bad input throws std::invalid_argument naming the file and the
+/// entry on every rank before anything is written.
+int run_pullout_fem_mode(dealii::ParameterHandler &prm, const PullOutInput &in, const std::string &where,
+                         MPI_Comm communicator);
+} // namespace geohybrid::apps

@@ -1,0 +1,35 @@
+#pragma once
+// The input of `geohybrid pullout` as read from its file, shared by the soil models: the tank, the
+// anchorage, the sheet and the pull (dem/pullout_tank.h's plain data, which the continuum mode
+// maps onto fem::PulloutProblemParameters), and the outputs asked for.
+#include "dem/pullout_tank.h"
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace geohybrid::apps
+{
+struct PullOutInput
+{
+  dem::PullOutTankSpec tank;
+  dem::PullSpec pull;
+  std::vector<double> profiles_at;
+  std::vector<double> fields_at; ///< head displacements of the field outputs (dem mode) [m]
+  std::optional<double> experimental_T_max; ///< [N/m]
+  double stress_band = 0.05;
+};
+
+/// Reads the sections every mode uses (and those of the DEM, which fem mode leaves unused) and
+/// checks them; the fill's layers (Filling) are checked in dem mode only. Throws
+/// std::invalid_argument naming `where` and the entry.
+PullOutInput parse_pullout(dealii::ParameterHandler &prm, const std::string &where, bool dem_mode);
+
+/// "simple run-out" or "wrap-around".
+inline std::string anchorage_name(const dem::PullOutGeometry &g)
+{
+  return g.anchorage == dem::Anchorage::wrap_around ? "wrap-around" : "simple run-out";
+}
+} // namespace geohybrid::apps

@@ -1,0 +1,68 @@
+#pragma once
+// The result files of `geohybrid pullout`, the same whatever the soil model (mode = dem or fem),
+// so that discrete and continuum curves can be laid over each other (`geohybrid compare`):
+//   pullout_curve.csv        head_displacement_m,head_tension_kN_per_m (per metre of width)
+//   pullout_curve_sheet.csv  head_displacement_m,head_tension_kN for the sheet's width b (Table 6)
+//   sheet_displacements.csv  displacement of the sheet's beginning, middle and end of its lower part
+//   sheet_tension.csv        tension along the sheet at the chosen head displacements
+//   pullout_curve.png        the curve, with the experimental T_max as a line if given
+// and the summary keys every mode shares (T_max and its displacement, the experiment's value and
+// the difference). Each mode adds its own keys and writes summary.json last. Under MPI only one
+// rank (the caller chooses, rank 0) owns a PulloutOutput.
+#include "apps/run_directory.h"
+
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace geohybrid::apps
+{
+/// One segment of the sheet in a tension profile: its index, the arc length of its middle from
+/// the clamp as laid, its middle's position now, its tension [-, m, m, m, N/m].
+struct SheetTensionRow
+{
+  std::size_t segment = 0;
+  double arc_length = 0.0, x = 0.0, y = 0.0, tension = 0.0;
+};
+
+class PulloutOutput
+{
+public:
+  /// Creates the CSV files in `directory` with their headers. `profiles_at` are the head
+  /// displacements at which a tension profile is written [m]; `sheet_width` is b [m].
+  PulloutOutput(const std::filesystem::path &directory, double sheet_width, std::vector<double> profiles_at);
+
+  /// One point of the curve: head displacement [m], head tension [N/m], and the displacements
+  /// along the pull of the sheet's beginning (first node inside the tank), the middle and the end
+  /// of its lower part [m].
+  void add_point(double head_displacement, double head_tension, const std::array<double, 3> &sheet_displacements);
+  /// Whether the next of 'tension profiles at' has been reached at this head displacement.
+  bool profile_due(double head_displacement) const;
+  /// Writes the profile once for each of 'tension profiles at' reached by `head_displacement`.
+  void add_profile(double head_displacement, const std::vector<SheetTensionRow> &rows);
+
+  /// Flushes the CSV files (throws std::runtime_error naming the directory if that fails) and
+  /// draws pullout_curve.png: the curve labelled `label`, and the experimental T_max [N/m] as a
+  /// line over [0, final_displacement] if given.
+  void finish(const std::string &label, const std::optional<double> &experimental_T_max, double final_displacement);
+
+  double max_head_tension() const { return T_max_; }             ///< [N/m]
+  double head_displacement_at_max() const { return u_at_T_max_; } ///< [m]
+
+  /// The keys every mode writes: command, mode, anchorage, T_max (per metre and for b), its head
+  /// displacement, and the experiment's T_max with the difference in % when given.
+  void fill_summary(Summary &summary, const std::string &mode, const std::string &anchorage,
+                    const std::optional<double> &experimental_T_max) const;
+
+private:
+  std::filesystem::path directory_;
+  double sheet_width_;
+  std::vector<double> profiles_at_;
+  std::size_t next_profile_ = 0;
+  std::ofstream curve_, per_sheet_, displacements_, profiles_;
+  double T_max_ = 0.0, u_at_T_max_ = 0.0;
+};
+} // namespace geohybrid::apps

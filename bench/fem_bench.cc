@@ -1,0 +1,90 @@
+// The explicit continuum solver's cost per step per cell (bench/run_fem_bench runs it; not a
+// test): the INSA tank of examples/pullout_runout_h040.prm (1.5 m x 0.6 m) meshed by
+// fem::make_tank_mesh with its sheet's row centred, the soil (sand 1: E = 20 MPa, nu = 0.3,
+// 15.2 kN/m3; Mohr-Coulomb phi = 38.4, psi = 8.4 degrees, or elastic) at its geostatic K0 state
+// under gravity, smooth walls, local damping 0.3, as in a pull-out. The timed steps follow a few
+// untimed ones (caches warm). Runs on the ranks of mpirun.
+//
+// Usage: fem_bench --degree 1|2 --soil elastic|mohr-coulomb --cell-size H [--steps N]
+// Prints one line: key=value pairs (cells, dofs, ranks, steps, seconds, us_per_step_per_cell).
+#include "fem/constitutive/soil_model.h"
+#include "fem/explicit_solver.h"
+#include "fem/tank_mesh.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <string>
+
+using namespace geohybrid::fem;
+
+int main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  unsigned int degree = 1, steps = 200;
+  std::string soil_name = "elastic";
+  double cell_size = 0.0075;
+  for (int k = 1; k + 1 < argc; k += 2)
+    {
+      const std::string key = argv[k], value = argv[k + 1];
+      if (key == "--degree")
+        degree = static_cast<unsigned int>(std::stoul(value));
+      else if (key == "--soil")
+        soil_name = value;
+      else if (key == "--cell-size")
+        cell_size = std::stod(value);
+      else if (key == "--steps")
+        steps = static_cast<unsigned int>(std::stoul(value));
+      else
+        {
+          std::cerr << "fem_bench: unknown option " << key << '\n';
+          return 2;
+        }
+    }
+  const double length = 1.5, height = 0.6, H = 0.4, gamma = 15.2e3, g = 9.81;
+  SoilParameters soil;
+  soil.kind = soil_name == "elastic" ? SoilModelKind::linear_elastic : SoilModelKind::mohr_coulomb;
+  soil.young_modulus = 20e6;
+  soil.poisson_ratio = 0.3;
+  soil.strength = {38.4, 0.0, 8.4};
+  const SoilModel model(soil, "fem_bench");
+
+  dealii::parallel::distributed::Triangulation<dim> mesh(MPI_COMM_WORLD);
+  make_tank_mesh(mesh, length, height, cell_size, {}, {height - H}, "fem_bench");
+  BoundaryConditions bc;
+  bc.displacements = {{tank_boundary::bottom, true, true, nullptr},
+                      {tank_boundary::back_wall, true, false, nullptr},
+                      {tank_boundary::front_wall, true, false, nullptr}};
+  ExplicitSettings settings;
+  settings.element_degree = degree;
+  settings.density = gamma / g;
+  settings.gravity[1] = -g;
+  settings.damping.local = 0.3;
+  ExplicitSolver solver(mesh, model, bc, settings);
+  GeostaticStress geostatic;
+  geostatic.surface_elevation = height;
+  geostatic.unit_weight = gamma;
+  geostatic.k0 = model.default_k0();
+  solver.set_initial_stress(geostatic);
+
+  for (unsigned int n = 0; n < 5; ++n)
+    solver.step();
+  MPI_Barrier(MPI_COMM_WORLD);
+  const auto start = std::chrono::steady_clock::now();
+  for (unsigned int n = 0; n < steps; ++n)
+    solver.step();
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const unsigned int ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  const double out_of_balance = solver.out_of_balance_ratio(); // collective
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    std::cout << "degree=Q" << degree << " soil=" << soil_name << " cells=" << mesh.n_global_active_cells()
+              << " dofs=" << solver.space().dof_handler().n_dofs() << " ranks=" << ranks << " steps=" << steps
+              << " time_step_s=" << solver.time_step() << " seconds=" << seconds
+              << " us_per_step_per_cell=" << 1e6 * seconds / (steps * mesh.n_global_active_cells())
+              << " out_of_balance=" << out_of_balance << std::endl;
+  return 0;
+}
