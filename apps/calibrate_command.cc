@@ -98,14 +98,6 @@ std::optional<double> optional_number(ParameterHandler &prm, const std::string &
   return value;
 }
 
-std::string number(double value, int digits = 12)
-{
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s << std::setprecision(digits) << value;
-  return s.str();
-}
-
 /// With its sign always shown, for errors.
 std::string signed_number(double value, int digits) { return (value >= 0.0 ? "+" : "") + number(value, digits); }
 

@@ -1,5 +1,7 @@
 #include "contact_parameters.h"
 
+#include "run_directory.h"
+
 #include <iomanip>
 #include <sstream>
 
@@ -7,16 +9,6 @@ namespace geohybrid::apps
 {
 using dealii::Patterns::Bool;
 using dealii::Patterns::Double;
-
-namespace
-{
-std::string number(double value)
-{
-  std::ostringstream s;
-  s << std::setprecision(12) << value;
-  return s.str();
-}
-} // namespace
 
 void declare_contact_parameters(dealii::ParameterHandler &prm, const dem::ContactParameters &d)
 {

@@ -50,12 +50,7 @@ void declare_pullout_parameters(ParameterHandler &prm)
   const dem::SheetParameters sheet;
   const dem::TankFillingSpec fill;
   const dem::PullSpec pull;
-  const auto text = [](double v) {
-    std::ostringstream s;
-    s.imbue(std::locale::classic());
-    s << std::setprecision(12) << v;
-    return s.str();
-  };
+  const auto text = [](double v) { return number(v); };
   prm.declare_entry("output directory", "output/pullout", Patterns::Anything(),
                     "Directory for all results, created if needed, relative to the working directory");
   prm.declare_entry("threads", "2", Patterns::Integer(1, 256),
@@ -170,17 +165,6 @@ void declare_pullout_parameters(ParameterHandler &prm)
 
   declare_continuum_parameters(prm);
 }
-
-namespace
-{
-std::string number(double value, int digits = 12)
-{
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s << std::setprecision(digits) << value;
-  return s.str();
-}
-} // namespace
 
 PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool dem_mode)
 {

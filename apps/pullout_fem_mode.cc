@@ -80,14 +80,6 @@ void declare_continuum_parameters(ParameterHandler &prm)
 
 namespace
 {
-std::string number(double value, int digits = 12)
-{
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s << std::setprecision(digits) << value;
-  return s.str();
-}
-
 struct ContinuumInput
 {
   fem::PulloutProblemParameters problem;

@@ -10,17 +10,6 @@
 
 namespace geohybrid::apps
 {
-namespace
-{
-std::string number(double value)
-{
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s << std::setprecision(12) << value;
-  return s.str();
-}
-} // namespace
-
 PulloutOutput::PulloutOutput(const std::filesystem::path &directory, double sheet_width, std::vector<double> profiles_at)
   : directory_(directory), sheet_width_(sheet_width), profiles_at_(std::move(profiles_at)),
     curve_(directory / "pullout_curve.csv"), per_sheet_(directory / "pullout_curve_sheet.csv"),

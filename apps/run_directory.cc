@@ -15,6 +15,14 @@
 
 namespace geohybrid::apps
 {
+std::string number(double value, int digits)
+{
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s << std::setprecision(digits) << value;
+  return s.str();
+}
+
 void parse_input_file(dealii::ParameterHandler &prm, const std::string &input_file)
 {
   if (!std::filesystem::is_regular_file(input_file))

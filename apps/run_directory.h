@@ -17,6 +17,10 @@ class ParameterHandler;
 
 namespace geohybrid::apps
 {
+/// `value` with `digits` significant digits in the C locale (a decimal point whatever the user's
+/// locale), for messages, parameter files and summaries.
+std::string number(double value, int digits = 12);
+
 /// Reads an input file (.prm or .json) into `prm`. Throws std::runtime_error with deal.II's
 /// message trimmed to what the user needs (file, line, entry, expected pattern).
 void parse_input_file(dealii::ParameterHandler &prm, const std::string &input_file);

@@ -67,6 +67,42 @@ std::vector<dealii::Point<dim>> sheet_nodes(const std::vector<dealii::Point<dim>
 }
 } // namespace
 
+PulloutTankExtent pullout_tank_extent(const dealii::parallel::distributed::Triangulation<dim> &mesh,
+                                      const PulloutProblemParameters &parameters, const std::string &where)
+{
+  const auto [lo, hi] = mesh_extent(mesh);
+  const PulloutTankExtent tank{hi[0] - lo[0], hi[1] - lo[1], hi[0], hi[1]};
+  const double tolerance = 1e-9 * std::max(tank.length, tank.height);
+  if (parameters.sheet_length > tank.length + tolerance)
+    {
+      std::ostringstream message;
+      message << where << ": parameter 'sheet length L' = " << parameters.sheet_length
+              << " m is longer than the tank (" << tank.length << " m, from the mesh)";
+      throw std::invalid_argument(message.str());
+    }
+  if (parameters.sheet_depth >= tank.height - tolerance)
+    {
+      std::ostringstream message;
+      message << where << ": parameter 'sheet depth H' = " << parameters.sheet_depth
+              << " m puts the sheet at or below the tank's bottom (the soil is " << tank.height
+              << " m high, from the mesh)";
+      throw std::invalid_argument(message.str());
+    }
+  return tank;
+}
+
+BoundaryConditions pullout_boundary_conditions(double surcharge)
+{
+  // Bottom fixed, smooth walls, the surcharge on top: the geostatic state is then in equilibrium.
+  BoundaryConditions bc;
+  bc.displacements = {{tank_boundary::bottom, true, true, nullptr},
+                      {tank_boundary::back_wall, true, false, nullptr},
+                      {tank_boundary::front_wall, true, false, nullptr}};
+  if (surcharge > 0.0)
+    bc.pressures = {{tank_boundary::top, std::make_shared<dealii::Functions::ConstantFunction<dim>>(surcharge)}};
+  return bc;
+}
+
 PulloutProblem::PulloutProblem(const dealii::parallel::distributed::Triangulation<dim> &mesh,
                                const PulloutProblemParameters &parameters, const std::string &where)
   : parameters_(parameters)
@@ -74,35 +110,12 @@ PulloutProblem::PulloutProblem(const dealii::parallel::distributed::Triangulatio
   parameters_.validate(where);
   const SoilModel soil(parameters_.soil, where + ": soil");
 
-  const auto [lo, hi] = mesh_extent(mesh);
-  tank_length_ = hi[0] - lo[0];
-  tank_height_ = hi[1] - lo[1];
-  x_front_ = hi[0];
-  y_top_ = hi[1];
-  const double tolerance = 1e-9 * std::max(tank_length_, tank_height_);
-  if (parameters_.sheet_length > tank_length_ + tolerance)
-    {
-      std::ostringstream message;
-      message << where << ": parameter 'sheet length L' = " << parameters_.sheet_length
-              << " m is longer than the tank (" << tank_length_ << " m, from the mesh)";
-      throw std::invalid_argument(message.str());
-    }
-  if (parameters_.sheet_depth >= tank_height_ - tolerance)
-    {
-      std::ostringstream message;
-      message << where << ": parameter 'sheet depth H' = " << parameters_.sheet_depth
-              << " m puts the sheet at or below the tank's bottom (the soil is " << tank_height_
-              << " m high, from the mesh)";
-      throw std::invalid_argument(message.str());
-    }
-
-  // Bottom fixed, smooth walls, the surcharge on top: the geostatic state is then in equilibrium.
-  BoundaryConditions bc;
-  bc.displacements = {{tank_boundary::bottom, true, true, nullptr},
-                      {tank_boundary::back_wall, true, false, nullptr},
-                      {tank_boundary::front_wall, true, false, nullptr}};
-  if (parameters_.surcharge > 0.0)
-    bc.pressures = {{tank_boundary::top, std::make_shared<dealii::Functions::ConstantFunction<dim>>(parameters_.surcharge)}};
+  const PulloutTankExtent tank = pullout_tank_extent(mesh, parameters_, where);
+  tank_length_ = tank.length;
+  tank_height_ = tank.height;
+  x_front_ = tank.x_front;
+  y_top_ = tank.y_top;
+  const BoundaryConditions bc = pullout_boundary_conditions(parameters_.surcharge);
 
   ExplicitSettings settings;
   settings.element_degree = parameters_.element_degree;
@@ -238,16 +251,6 @@ void make_rectangular_tank(dealii::parallel::distributed::Triangulation<dim> &me
 {
   dealii::GridGenerator::subdivided_hyper_rectangle(mesh, {nx, ny}, dealii::Point<dim>(0, 0),
                                                     dealii::Point<dim>(length, height), true);
-  // colorize: 0 left, 1 right, 2 bottom, 3 top -> the tank's ids.
-  for (const auto &cell : mesh.active_cell_iterators())
-    for (const auto &face : cell->face_iterators())
-      if (face->at_boundary())
-        {
-          const auto id = face->boundary_id();
-          face->set_boundary_id(id == 0   ? tank_boundary::back_wall
-                                : id == 1 ? tank_boundary::front_wall
-                                : id == 2 ? tank_boundary::bottom
-                                          : tank_boundary::top);
-        }
+  set_tank_boundary_ids_of_colorized_rectangle(mesh);
 }
 } // namespace geohybrid::fem

@@ -159,6 +159,22 @@ private:
 void make_pullout_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,
                             double cell_size, const PulloutProblemParameters &parameters, const std::string &where);
 
+/// The tank a pull-out mesh describes (its bounding box, the same on every rank).
+struct PulloutTankExtent
+{
+  double length = 0.0, height = 0.0; ///< [m]
+  double x_front = 0.0, y_top = 0.0; ///< the front wall's abscissa and the soil surface's ordinate [m]
+};
+
+/// The tank of `mesh`; throws std::invalid_argument naming `where` and the parameter if the sheet
+/// of `parameters` (L, H) does not fit in it. Both pull-outs (explicit and implicit) use it. Collective.
+PulloutTankExtent pullout_tank_extent(const dealii::parallel::distributed::Triangulation<dim> &mesh,
+                                      const PulloutProblemParameters &parameters, const std::string &where);
+
+/// The tank's supports: the bottom fixed, the back and front walls smooth rollers (u_x = 0), and the
+/// surcharge q >= 0 as a pressure on the top.
+BoundaryConditions pullout_boundary_conditions(double surcharge);
+
 /// A rectangular tank [0, length] x [0, height] of nx x ny cells with the tank meshes' boundary
 /// ids (1 bottom, 2 front wall at x = length, 3 top, 4 back wall at x = 0), for tests and quick
 /// studies without a .msh file. Collective.

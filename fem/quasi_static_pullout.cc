@@ -3,12 +3,8 @@
 #include "fem/constitutive/parameter_check.h"
 #include "fem/tank_mesh.h"
 
-#include <deal.II/base/function_lib.h>
-#include <deal.II/grid/grid_tools.h>
-
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace geohybrid::fem
 {
@@ -30,36 +26,12 @@ QuasiStaticPullout::QuasiStaticPullout(const dealii::parallel::distributed::Tria
   const PulloutProblemParameters &p = parameters_.pullout;
   const SoilModel soil(p.soil, where + ": soil");
 
-  // The coarse cells are on every rank, and refinement does not move a straight tank's walls: the
-  // box of the mesh's vertices is the tank, the same on every rank.
-  const auto box = dealii::GridTools::compute_bounding_box(mesh);
-  tank_length_ = box.side_length(0);
-  tank_height_ = box.side_length(1);
-  x_front_ = box.get_boundary_points().second[0];
-  y_top_ = box.get_boundary_points().second[1];
-  const double tolerance = 1e-9 * std::max(tank_length_, tank_height_);
-  if (p.sheet_length > tank_length_ + tolerance)
-    {
-      std::ostringstream message;
-      message << where << ": parameter 'sheet length L' = " << p.sheet_length << " m is longer than the tank ("
-              << tank_length_ << " m, from the mesh)";
-      throw std::invalid_argument(message.str());
-    }
-  if (p.sheet_depth >= tank_height_ - tolerance)
-    {
-      std::ostringstream message;
-      message << where << ": parameter 'sheet depth H' = " << p.sheet_depth
-              << " m puts the sheet at or below the tank's bottom (the soil is " << tank_height_
-              << " m high, from the mesh)";
-      throw std::invalid_argument(message.str());
-    }
-
-  BoundaryConditions bc;
-  bc.displacements = {{tank_boundary::bottom, true, true, nullptr},
-                      {tank_boundary::back_wall, true, false, nullptr},
-                      {tank_boundary::front_wall, true, false, nullptr}};
-  if (p.surcharge > 0.0)
-    bc.pressures = {{tank_boundary::top, std::make_shared<dealii::Functions::ConstantFunction<dim>>(p.surcharge)}};
+  const PulloutTankExtent tank = pullout_tank_extent(mesh, p, where);
+  tank_length_ = tank.length;
+  tank_height_ = tank.height;
+  x_front_ = tank.x_front;
+  y_top_ = tank.y_top;
+  const BoundaryConditions bc = pullout_boundary_conditions(p.surcharge);
 
   QuasiStaticSettings settings;
   settings.element_degree = p.element_degree;

@@ -141,7 +141,11 @@ void make_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, dou
                                                cell_sizes_around(height, cell_size, std::move(y_centres), "y", where)};
   dealii::GridGenerator::subdivided_hyper_rectangle(mesh, steps, dealii::Point<dim>(0, 0),
                                                     dealii::Point<dim>(length, height), true);
-  // colorize: 0 left, 1 right, 2 bottom, 3 top -> the tank's ids.
+  set_tank_boundary_ids_of_colorized_rectangle(mesh);
+}
+
+void set_tank_boundary_ids_of_colorized_rectangle(dealii::parallel::distributed::Triangulation<dim> &mesh)
+{
   for (const auto &cell : mesh.active_cell_iterators())
     for (const auto &face : cell->face_iterators())
       if (face->at_boundary())

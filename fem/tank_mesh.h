@@ -40,6 +40,10 @@ void read_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, con
 /// Collective.
 std::pair<dealii::Point<dim>, dealii::Point<dim>> mesh_extent(const dealii::parallel::distributed::Triangulation<dim> &mesh);
 
+/// Gives the boundary faces of a rectangle made by GridGenerator with colorize = true (ids 0 left,
+/// 1 right, 2 bottom, 3 top) the tank's ids (back wall, front wall, bottom, top).
+void set_tank_boundary_ids_of_colorized_rectangle(dealii::parallel::distributed::Triangulation<dim> &mesh);
+
 /// A rectangular tank [0, length] x [0, height] with the tank meshes' boundary ids, of cells of
 /// about `cell_size`, whose columns are centred on the abscissae `x_centres` and whose rows on the
 /// ordinates `y_centres`: a sheet laid along those lines then runs through the middle of its cells
