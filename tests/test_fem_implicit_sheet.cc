@@ -42,31 +42,11 @@ double mean_iterations(const LoadSteppingReport &report)
   return sum / report.steps.size();
 }
 
-/// The small tank of tests/test_fem_pullout.cc: 0.6 m x 0.4 m of 12 x 8 cells, elastic soil
-/// (E = 20 MPa, nu = 0.3, K0 = nu / (1 - nu)) of 15.2 kN/m^3 under 30 kPa, the sheet over the
-/// whole length at H = 0.225 m, pulled 12 mm. With smooth walls at both ends of the sheet, the
-/// mean normal stress on it is sigma_v = q + gamma H however the shear redistributes it.
-PulloutProblemParameters small_tank(double pull_rate)
-{
-  PulloutProblemParameters p;
-  p.sheet_length = 0.6;
-  p.sheet_depth = 0.225;
-  p.sheet_node_spacing = 0.025;
-  p.soil.kind = SoilModelKind::linear_elastic;
-  p.soil.young_modulus = 20e6;
-  p.soil.poisson_ratio = 0.3;
-  p.soil_density = 15.2e3 / 9.81;
-  p.surcharge = 30e3;
-  p.pull_rate = pull_rate;
-  p.final_displacement = 0.012;
-  p.output_interval = 0.5e-3;
-  return p;
-}
 
 QuasiStaticPulloutParameters implicit_small_tank()
 {
   QuasiStaticPulloutParameters p;
-  p.pullout = small_tank(0.004);
+  p.pullout = small_pullout_tank(0.004);
   p.displacement_increment = 0.5e-3;
   p.newton.relative_tolerance = 1e-10;
   p.linear_solver.relative_tolerance = 1e-12;

@@ -16,29 +16,6 @@ using namespace geohybrid::fem::testing;
 
 namespace
 {
-/// A 0.6 m x 0.4 m tank of 12 x 8 cells, elastic soil (E = 20 MPa, nu = 0.3, K0 = nu / (1 - nu))
-/// of 15.2 kN/m^3 under 30 kPa, the sheet over the whole length (L = 0.6 m, from the front wall
-/// to the back wall) at H = 0.225 m, in the middle of a row of cells. With smooth walls at both of
-/// its ends, the vertical equilibrium of the soil above the sheet gives a mean normal stress of
-/// sigma_v = q + gamma H over its length however the shear redistributes it, so the limit is
-/// exactly 2 sigma_v tan(delta) L (a sheet ending inside the soil would not have that property).
-PulloutProblemParameters small_tank_parameters(double pull_rate)
-{
-  PulloutProblemParameters p;
-  p.sheet_length = 0.6;
-  p.sheet_depth = 0.225;
-  p.sheet_node_spacing = 0.025;
-  p.soil.kind = SoilModelKind::linear_elastic;
-  p.soil.young_modulus = 20e6;
-  p.soil.poisson_ratio = 0.3;
-  p.soil_density = 15.2e3 / 9.81;
-  p.surcharge = 30e3;
-  p.pull_rate = pull_rate;
-  p.final_displacement = 0.012;
-  p.output_interval = 0.5e-3;
-  return p;
-}
-
 struct SmallTank
 {
   Mesh mesh{MPI_COMM_WORLD};
@@ -79,7 +56,7 @@ void print(const char *what, const PulloutResult &r)
 TEST(PulloutProblem, ElasticTankReachesTheInterfaceLimitMonotonically)
 {
   SmallTank tank;
-  const auto parameters = small_tank_parameters(0.004);
+  const auto parameters = small_pullout_tank(0.004);
   PulloutProblem problem(tank.mesh, parameters);
   const PulloutResult r = problem.run();
   print("pull-out, 4 mm/s", r);
@@ -119,8 +96,8 @@ TEST(PulloutProblem, ElasticTankReachesTheInterfaceLimitMonotonically)
 TEST(PulloutProblem, HalvingThePullRateLeavesTheCurveUnchanged)
 {
   SmallTank tank_a, tank_b;
-  const PulloutResult fast = PulloutProblem(tank_a.mesh, small_tank_parameters(0.004)).run();
-  const PulloutResult slow = PulloutProblem(tank_b.mesh, small_tank_parameters(0.002)).run();
+  const PulloutResult fast = PulloutProblem(tank_a.mesh, small_pullout_tank(0.004)).run();
+  const PulloutResult slow = PulloutProblem(tank_b.mesh, small_pullout_tank(0.002)).run();
   print("pull-out, 2 mm/s", slow);
   double largest = 0.0;
   for (double d = 0.25e-3; d <= 0.0115; d += 0.25e-3)
@@ -149,33 +126,33 @@ TEST(PulloutProblem, BadInputIsRefusedByName)
         EXPECT_NE(what.find("pull-out test"), std::string::npos) << what;
       }
   };
-  auto p = small_tank_parameters(0.004);
+  auto p = small_pullout_tank(0.004);
   p.sheet_length = 0.7; // the tank is 0.6 m long
   refused(p, "sheet length L");
-  p = small_tank_parameters(0.004);
+  p = small_pullout_tank(0.004);
   p.sheet_depth = 0.4; // at the bottom
   refused(p, "sheet depth H");
   p.sheet_depth = -0.1;
   refused(p, "sheet depth H");
-  p = small_tank_parameters(0.004);
+  p = small_pullout_tank(0.004);
   p.pull_rate = 0.0;
   refused(p, "pull rate");
-  p = small_tank_parameters(0.004);
+  p = small_pullout_tank(0.004);
   p.output_interval = 0.1; // above the final displacement
   refused(p, "output interval");
-  p = small_tank_parameters(0.004);
+  p = small_pullout_tank(0.004);
   p.final_displacement = -1.0;
   refused(p, "final displacement");
-  p = small_tank_parameters(0.004);
+  p = small_pullout_tank(0.004);
   p.sheet.axial_stiffness = -1.0;
   refused(p, "axial stiffness J");
-  p = small_tank_parameters(0.004);
+  p = small_pullout_tank(0.004);
   p.sheet.interface.friction_angle_deg = 95.0;
   refused(p, "interface friction angle");
-  p = small_tank_parameters(0.004);
+  p = small_pullout_tank(0.004);
   p.soil.young_modulus = -1.0;
   EXPECT_THROW(PulloutProblem(tank.mesh, p), std::invalid_argument);
-  p = small_tank_parameters(0.004);
+  p = small_pullout_tank(0.004);
   p.snapshot_directory = "somewhere";
   refused(p, "snapshot interval");
 }
@@ -184,7 +161,7 @@ TEST(PulloutProblem, BadInputIsRefusedByName)
 TEST(PulloutProblem, WritesSnapshotsAtTheirInterval)
 {
   SmallTank tank;
-  auto p = small_tank_parameters(0.004);
+  auto p = small_pullout_tank(0.004);
   p.final_displacement = 0.002;
   p.snapshot_interval = 0.001;
   const auto directory = std::filesystem::temp_directory_path() / "geohybrid_test_fem_pullout_snapshots";

@@ -1,5 +1,6 @@
 #pragma once
 // Shared set-up for the tests of the continuum solver: meshes, soils and load functions.
+#include "fem/pullout_problem.h"
 #include "fem/quasi_static_solver.h"
 
 #include <deal.II/grid/grid_generator.h>
@@ -122,4 +123,28 @@ struct Layer
     return s;
   }
 };
+
+/// A 0.6 m x 0.4 m tank of 12 x 8 cells, elastic soil (E = 20 MPa, nu = 0.3, K0 = nu / (1 - nu))
+/// of 15.2 kN/m^3 under 30 kPa, the sheet over the whole length (L = 0.6 m, from the front wall
+/// to the back wall) at H = 0.225 m, in the middle of a row of cells. With smooth walls at both of
+/// its ends, the vertical equilibrium of the soil above the sheet gives a mean normal stress of
+/// sigma_v = q + gamma H over its length however the shear redistributes it, so the limit is
+/// exactly 2 sigma_v tan(delta) L (a sheet ending inside the soil would not have that property).
+inline PulloutProblemParameters small_pullout_tank(double pull_rate)
+{
+  PulloutProblemParameters p;
+  p.sheet_length = 0.6;
+  p.sheet_depth = 0.225;
+  p.sheet_node_spacing = 0.025;
+  p.soil.kind = SoilModelKind::linear_elastic;
+  p.soil.young_modulus = 20e6;
+  p.soil.poisson_ratio = 0.3;
+  p.soil_density = 15.2e3 / 9.81;
+  p.surcharge = 30e3;
+  p.pull_rate = pull_rate;
+  p.final_displacement = 0.012;
+  p.output_interval = 0.5e-3;
+  return p;
+}
+
 } // namespace geohybrid::fem::testing
