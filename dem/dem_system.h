@@ -13,6 +13,14 @@
 // Every loop visits bodies and contacts in a fixed order and each result is written by exactly
 // one thread, so a run gives the same numbers, bit for bit, on any number of threads.
 //
+// Threads: a step is two parallel regions (without sheets). The first is one pass over the
+// bodies (half kick, drift, forces restarted from gravity, single centred discs placed, the
+// largest move since the last rebuild); each thread owns a fixed contiguous range of bodies.
+// Then, serially, the walls move and the lists are rebuilt if needed. The second region is the
+// pair loop (one chunk of pairs per thread, PairContacts), the completion of the bodies shared by
+// two chunks, the walls (one thread) and the second half kick (the same body ranges). Each
+// fork, join or barrier costs microseconds, and on a loaded machine a scheduler slice.
+//
 // Geosynthetic sheets (spar_sheet.h) are advanced by the same scheme and local damping; their
 // physics (axial forces, disc-sheet and node-wall contacts) lives in spar_sheet.* and
 // sheet_contacts.*, called from here. A system without sheets runs exactly as before.
