@@ -468,7 +468,9 @@ TEST(Threads, SingleDiscsOneTwoThreeThreadsBitForBit)
       EXPECT_GT(one.n_touching_pairs(), 300u);
       EXPECT_GT(one.n_neighbour_rebuilds(), 5u);
       if (damped)
-        EXPECT_GT(one.energy().local_damping_dissipated, 0.0);
+        {
+          EXPECT_GT(one.energy().local_damping_dissipated, 0.0);
+        }
     }
 }
 
