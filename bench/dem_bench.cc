@@ -609,6 +609,16 @@ int time_run(const Args &a)
               system.pair_contacts().size(), system.n_touching_pairs());
   std::printf("final_kinetic_energy=%.6g\nfinal_max_speed=%.6g\nfinal_coordination=%.4f\n",
               st.kinetic, st.max_speed, st.coordination);
+  {
+    // How much of the pair loop checks body ownership (PairContacts: the first pairs of each
+    // chunk after the first), and how many bodies are completed after the chunks.
+    const PairContacts &c = system.pair_contacts();
+    std::size_t checked = 0;
+    for (std::size_t k = 0; k < c.n_chunks; ++k)
+      checked += c.chunk_checked_end[k] - c.chunk_begin(k);
+    std::printf("pair_chunks=%zu\npairs_checked_for_ownership=%zu\nshared_bodies=%zu\n", c.n_chunks, checked,
+                c.shared_body.size());
+  }
 
   if (a.values.count("final"))
     {

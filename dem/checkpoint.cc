@@ -34,7 +34,7 @@ static_assert(sizeof(ContactParameters) == 56, "ContactParameters changed: updat
 static_assert(sizeof(WallServo) == 40, "WallServo changed: update the checkpoint");
 static_assert(sizeof(Wall) == 272, "Wall changed: update the checkpoint");
 static_assert(sizeof(ParticleSet) == 22 * sizeof(std::vector<double>), "ParticleSet changed: update the checkpoint");
-static_assert(sizeof(PairContacts) == 16 * sizeof(std::vector<double>) + sizeof(std::size_t),
+static_assert(sizeof(PairContacts) == 17 * sizeof(std::vector<double>) + sizeof(std::size_t),
               "PairContacts changed: update the checkpoint (the adjacency and chunk plan are derived, not stored)");
 static_assert(sizeof(WallContacts) == 7 * sizeof(std::vector<double>), "WallContacts changed: update the checkpoint");
 static_assert(sizeof(EnergyBudget) == 10 * sizeof(double), "EnergyBudget changed: update the checkpoint");
@@ -46,7 +46,7 @@ static_assert(sizeof(SparSheet) == 17 * sizeof(std::vector<double>) + sizeof(std
 static_assert(sizeof(SheetContacts) == 14 * sizeof(std::vector<double>), "SheetContacts changed: update the checkpoint");
 static_assert(sizeof(SheetWallContacts) == 7 * sizeof(std::vector<double>),
               "SheetWallContacts changed: update the checkpoint");
-static_assert(sizeof(DemSystemState) == 1384, "DemSystemState changed: update the checkpoint");
+static_assert(sizeof(DemSystemState) == 1408, "DemSystemState changed: update the checkpoint");
 #endif
 
 std::string describe(const std::filesystem::path &file) { return "DEM checkpoint '" + file.string() + "'"; }

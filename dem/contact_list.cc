@@ -203,6 +203,18 @@ void build_body_adjacency(const ParticleSet &p, PairContacts &pairs, std::size_t
       pairs.shared_body.push_back(static_cast<std::uint32_t>(b));
       pairs.shared_first_entry.push_back(e);
     }
+  // The entries of a shared body from shared_first_entry on are its pairs in chunks that do not
+  // own it: each such chunk must check ownership up to (and including) that pair.
+  pairs.chunk_checked_end.resize(pairs.n_chunks);
+  for (std::size_t k = 0; k < pairs.n_chunks; ++k)
+    pairs.chunk_checked_end[k] = static_cast<std::uint32_t>(pairs.chunk_begin(k));
+  for (std::size_t s = 0; s < pairs.shared_body.size(); ++s)
+    for (std::uint32_t e = pairs.shared_first_entry[s]; e < pairs.body_offset[pairs.shared_body[s] + 1]; ++e)
+      {
+        const std::uint32_t q = pairs.body_entry[e] >> 1;
+        std::uint32_t &checked_end = pairs.chunk_checked_end[chunk_of(q)];
+        checked_end = std::max(checked_end, q + 1);
+      }
 }
 
 void NeighbourSearch::append_discs_near_box(const Vec2 &lo, const Vec2 &hi, std::vector<std::uint32_t> &discs) const

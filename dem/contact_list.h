@@ -22,7 +22,7 @@ struct PairContacts
   // Results of the last force evaluation.
   SoaVector<double> force_x, force_y;      ///< force on disc i [N/m]
   SoaVector<double> torque_i, torque_j;    ///< moments about each body's centre of mass [N]; kept only
-                                           ///< when the loop runs in several chunks (shared bodies)
+                                           ///< for a body completed by its owning chunk (see below)
   SoaVector<double> elastic_normal_force;  ///< kn * overlap (0 when apart) [N/m]
   SoaVector<double> friction_work;         ///< energy dissipated by slip in the last step [J/m]
   SoaVector<double> viscous_work;          ///< energy dissipated by the dashpot in the last step [J/m]
@@ -38,9 +38,15 @@ struct PairContacts
   // in pair order, from its CSR entry shared_first_entry on. Each body thus sums its forces in
   // ascending pair order whatever the number of chunks (bit-for-bit the same result on any
   // number of threads), and no two threads ever write to one body.
+  //
+  // Only the first pairs of a chunk can touch a body owned by an earlier chunk (with the discs
+  // numbered in space, those near the chunk's first discs): chunk k checks ownership and stores
+  // the moments (torque_i, torque_j) for its pairs [chunk_begin(k), chunk_checked_end[k]) only,
+  // and adds the rest straight to both bodies, as the one chunk of a single thread does.
   std::size_t n_chunks = 1;
   SoaVector<std::uint32_t> body_first_pair; ///< lowest pair touching each body (size() if none)
   SoaVector<std::uint32_t> shared_body, shared_first_entry;
+  SoaVector<std::uint32_t> chunk_checked_end; ///< per chunk: 1 + its last pair touching a body it does not own
   /// First pair of chunk k (k = n_chunks gives size()).
   std::size_t chunk_begin(std::size_t k) const { return size() * k / n_chunks; }
 

@@ -1,5 +1,7 @@
 #include "dem_system.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <limits>
 #include <sstream>
@@ -54,6 +56,7 @@ DemSystem::DemSystem(ParticleSet particles, const LinearContactLaw &particle_law
   damping_torque_.assign(nb, 0.0);
   body_scratch_.assign(nb, 0.0);
   particles_.update_disc_positions();
+  single_centred_discs_ = particles_.single_centred_discs();
   if (settings_.time_step <= 0.0 && !std::isfinite(critical_time_step()))
     throw std::invalid_argument("DEM settings: no movable particle to set an automatic time step from; "
                                 "give 'time step' explicitly");
@@ -67,6 +70,8 @@ std::size_t DemSystem::add_wall(const Wall &wall)
   walls_.push_back(wall);
   wall_contacts_.emplace_back();
   wall_force_previous_.push_back(Vec2::Zero());
+  wall_friction_work_.push_back(0.0);
+  wall_viscous_work_.push_back(0.0);
   skin_ = std::max(skin_, 1.05 * wall.law.max_bonded_gap());
   rebuild_needed_ = true;
   // A stiffer wall lowers the stable step: re-check a step the user chose.
@@ -256,8 +261,8 @@ void DemSystem::initialise_forces()
   const double dt = time_step_;
   time_step_ = 0.0;
   rebuild_if_needed();
-  compute_pair_forces();
-  gather_forces_and_kick();
+  start_forces_from_gravity();
+  compute_forces_and_kick();
   time_step_ = dt;
   forces_initialised_ = true;
 }
@@ -265,68 +270,229 @@ void DemSystem::initialise_forces()
 void DemSystem::step()
 {
   initialise_forces();
-  kick_and_drift();
+  kick_and_drift(); // also restarts the bodies' forces from gravity
   if (!sheets_.empty())
     kick_and_drift_sheets();
   move_walls();
   rebuild_if_needed();
-  compute_pair_forces();
-  gather_forces_and_kick();
+  compute_forces_and_kick();
   time_ += time_step_;
   ++step_count_;
   if (step_count_ % 64 == 0)
     check_finite();
 }
 
-void DemSystem::kick_and_drift()
+namespace
 {
-  ParticleSet &p = particles_;
-  const double dt = time_step_, half = 0.5 * dt;
-  const std::size_t nb = p.n_bodies();
-  const bool book_damping = settings_.track_energy && settings_.local_damping > 0.0;
-  if (settings_.local_damping == 0.0)
+/// The bodies of the calling thread in every body loop of a step: a fixed split of [0, nb) into
+/// one contiguous range per thread of the team (all of it outside a parallel region).
+std::pair<std::size_t, std::size_t> thread_bodies(std::size_t nb)
+{
+  const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+  const std::size_t n = static_cast<std::size_t>(omp_get_num_threads());
+  return {nb * t / n, nb * (t + 1) / n};
+}
+
+/// What the body loops of a step read besides the particles.
+struct BodyLoopInput
+{
+  double dt = 0.0, alpha = 0.0, gx = 0.0, gy = 0.0;
+  double *damping_fx = nullptr, *damping_fy = nullptr, *damping_torque = nullptr, *scratch = nullptr;
+  const double *reference_x = nullptr, *reference_y = nullptr; ///< disc positions at the last rebuild
+};
+
+/// Bodies [begin, end) of the first half of a step: half kick, drift, the forces restarted from
+/// gravity (+ 0.0 turns a -0.0 into +0.0: see compute_forces_and_kick_for), and the discs placed
+/// (here for single centred discs, `discs` 1, or 2 to measure their move too; after the body
+/// loop for clusters, `discs` 0). With local damping (`damped`), the damping force of the last
+/// evaluation enters the kick, and with `book` its work goes to the scratch array. Every value
+/// is computed by the same expression whatever the range: each body gets the same bits on any
+/// number of threads (vectorised or not, IEEE operations on one body are the same). Returns the
+/// largest squared disc move from the reference positions (0 without them).
+template <bool damped, bool book, int discs>
+double kick_and_drift_range(ParticleSet &p, const BodyLoopInput &in, std::size_t begin, std::size_t end)
+{
+  double *const x = p.x.data(), *const y = p.y.data(), *const rotation = p.rotation.data();
+  double *const vx = p.vx.data(), *const vy = p.vy.data(), *const omega = p.omega.data();
+  double *const fx = p.fx.data(), *const fy = p.fy.data(), *const torque = p.torque.data();
+  const double *const mass = p.mass.data(), *const inverse_mass = p.inverse_mass.data(),
+                      *const inverse_inertia = p.inverse_inertia.data();
+  double *const disc_x = p.disc_x.data(), *const disc_y = p.disc_y.data();
+  const double *const damping_fx = in.damping_fx, *const damping_fy = in.damping_fy,
+                      *const damping_torque = in.damping_torque;
+  double *const scratch = in.scratch;
+  const double *const reference_x = in.reference_x, *const reference_y = in.reference_y;
+  const double dt = in.dt, half = 0.5 * dt, gx = in.gx, gy = in.gy;
+  double max_move2 = 0.0;
+#pragma omp simd reduction(max : max_move2)
+  for (std::size_t b = begin; b < end; ++b)
     {
-      // No local damping: damping_* are zero (adding them would change no bit), so this loop
-      // does not stream them.
-#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
-      for (std::size_t b = 0; b < nb; ++b)
+      if constexpr (damped)
         {
-          p.vx[b] += half * (p.fx[b] + 0.0) * p.inverse_mass[b];
-          p.vy[b] += half * (p.fy[b] + 0.0) * p.inverse_mass[b];
-          p.omega[b] += half * (p.torque[b] + 0.0) * p.inverse_inertia[b];
-          p.x[b] += dt * p.vx[b];
-          p.y[b] += dt * p.vy[b];
-          p.rotation[b] += dt * p.omega[b];
+          const double vx0 = vx[b], vy0 = vy[b], w0 = omega[b];
+          vx[b] += half * (fx[b] + damping_fx[b]) * inverse_mass[b];
+          vy[b] += half * (fy[b] + damping_fy[b]) * inverse_mass[b];
+          omega[b] += half * (torque[b] + damping_torque[b]) * inverse_inertia[b];
+          if constexpr (book) // work of the damping force during this half kick (exact for a constant force)
+            scratch[b] = 0.5 * half *
+                         (damping_fx[b] * (vx0 + vx[b]) + damping_fy[b] * (vy0 + vy[b]) +
+                          damping_torque[b] * (w0 + omega[b]));
+        }
+      else
+        {
+          // No local damping: damping_* are zero (adding them would change no bit), so this
+          // loop does not stream them.
+          vx[b] += half * (fx[b] + 0.0) * inverse_mass[b];
+          vy[b] += half * (fy[b] + 0.0) * inverse_mass[b];
+          omega[b] += half * (torque[b] + 0.0) * inverse_inertia[b];
+        }
+      x[b] += dt * vx[b];
+      y[b] += dt * vy[b];
+      rotation[b] += dt * omega[b];
+      fx[b] = mass[b] * gx + 0.0;
+      fy[b] = mass[b] * gy + 0.0;
+      torque[b] = 0.0;
+      if constexpr (discs > 0)
+        {
+          disc_x[b] = x[b];
+          disc_y[b] = y[b];
+          if constexpr (discs == 2)
+            {
+              const double dx = x[b] - reference_x[b], dy = y[b] - reference_y[b];
+              max_move2 = std::max(max_move2, dx * dx + dy * dy);
+            }
+        }
+    }
+  if constexpr (discs == 0)
+    for (std::size_t b = begin; b < end; ++b)
+      max_move2 = std::max(max_move2, p.place_discs(b, reference_x, reference_y));
+  return max_move2;
+}
+
+/// Bodies [begin, end) of the second half kick, with the forces of the new positions, and the
+/// local damping force of this evaluation (`damped`; its work to the scratch array with `book`).
+template <bool damped, bool book>
+void final_kick_range(ParticleSet &p, const BodyLoopInput &in, std::size_t begin, std::size_t end)
+{
+  double *const vx = p.vx.data(), *const vy = p.vy.data(), *const omega = p.omega.data();
+  const double *const fx = p.fx.data(), *const fy = p.fy.data(), *const torque = p.torque.data();
+  const double *const inverse_mass = p.inverse_mass.data(), *const inverse_inertia = p.inverse_inertia.data();
+  double *const damping_fx = in.damping_fx, *const damping_fy = in.damping_fy,
+                *const damping_torque = in.damping_torque, *const scratch = in.scratch;
+  const double half = 0.5 * in.dt, alpha = in.alpha;
+  if constexpr (!damped)
+    {
+      // No local damping (dynamics): the plain second half kick; damping_* stay zero.
+#pragma omp simd
+      for (std::size_t b = begin; b < end; ++b)
+        {
+          vx[b] += half * fx[b] * inverse_mass[b];
+          vy[b] += half * fy[b] * inverse_mass[b];
+          omega[b] += half * torque[b] * inverse_inertia[b];
         }
     }
   else
     {
-#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
-      for (std::size_t b = 0; b < nb; ++b)
+      // -alpha |F| sign(v), with sign(0) = 0
+      const auto damping = [alpha](double force, double velocity) {
+        return -alpha * std::abs(force) * static_cast<double>((velocity > 0.0) - (velocity < 0.0));
+      };
+#pragma omp simd
+      for (std::size_t b = begin; b < end; ++b)
         {
-          const double vx0 = p.vx[b], vy0 = p.vy[b], w0 = p.omega[b];
-          p.vx[b] += half * (p.fx[b] + damping_fx_[b]) * p.inverse_mass[b];
-          p.vy[b] += half * (p.fy[b] + damping_fy_[b]) * p.inverse_mass[b];
-          p.omega[b] += half * (p.torque[b] + damping_torque_[b]) * p.inverse_inertia[b];
-          if (book_damping) // work of the damping force during this half kick (exact for a constant force)
-            body_scratch_[b] = 0.5 * half *
-                               (damping_fx_[b] * (vx0 + p.vx[b]) + damping_fy_[b] * (vy0 + p.vy[b]) +
-                                damping_torque_[b] * (w0 + p.omega[b]));
-          p.x[b] += dt * p.vx[b];
-          p.y[b] += dt * p.vy[b];
-          p.rotation[b] += dt * p.omega[b];
+          // A fixed body keeps its velocity and has no damping force.
+          const bool fixed = inverse_mass[b] == 0.0;
+          const double dfx = fixed ? 0.0 : damping(fx[b], vx[b]);
+          const double dfy = fixed ? 0.0 : damping(fy[b], vy[b]);
+          const double dt = fixed ? 0.0 : damping(torque[b], omega[b]);
+          damping_fx[b] = dfx;
+          damping_fy[b] = dfy;
+          damping_torque[b] = dt;
+          const double vx0 = vx[b], vy0 = vy[b], w0 = omega[b];
+          const double vx1 = fixed ? vx0 : vx0 + half * (fx[b] + dfx) * inverse_mass[b];
+          const double vy1 = fixed ? vy0 : vy0 + half * (fy[b] + dfy) * inverse_mass[b];
+          const double w1 = fixed ? w0 : w0 + half * (torque[b] + dt) * inverse_inertia[b];
+          vx[b] = vx1;
+          vy[b] = vy1;
+          omega[b] = w1;
+          if constexpr (book)
+            scratch[b] = fixed ? 0.0 : 0.5 * half * (dfx * (vx0 + vx1) + dfy * (vy0 + vy1) + dt * (w0 + w1));
         }
     }
+}
+} // namespace
+
+void DemSystem::start_forces_from_gravity()
+{
+  ParticleSet &p = particles_;
+  const std::size_t nb = p.n_bodies();
+  const double gx = settings_.gravity.x(), gy = settings_.gravity.y();
+  // + 0.0 turns a -0.0 into +0.0 (see compute_forces_and_kick_for).
+  for (std::size_t b = 0; b < nb; ++b)
+    {
+      p.fx[b] = p.mass[b] * gx + 0.0;
+      p.fy[b] = p.mass[b] * gy + 0.0;
+      p.torque[b] = 0.0;
+    }
+}
+
+void DemSystem::kick_and_drift()
+{
+  ParticleSet &p = particles_;
+  const std::size_t nb = p.n_bodies(), nd = p.n_discs_total();
+  const bool damped = settings_.local_damping > 0.0;
+  const bool book_damping = settings_.track_energy && damped;
+  // The largest disc move since the last neighbour-list rebuild is measured in the same pass.
+  const bool measure = !rebuild_needed_ && disc_x_at_rebuild_.size() == nd && disc_y_at_rebuild_.size() == nd;
+  BodyLoopInput in;
+  in.dt = time_step_;
+  in.gx = settings_.gravity.x();
+  in.gy = settings_.gravity.y();
+  in.damping_fx = damping_fx_.data();
+  in.damping_fy = damping_fy_.data();
+  in.damping_torque = damping_torque_.data();
+  in.scratch = body_scratch_.data();
+  in.reference_x = measure ? disc_x_at_rebuild_.data() : nullptr;
+  in.reference_y = measure ? disc_y_at_rebuild_.data() : nullptr;
+  // Single centred discs are placed in the body loop, clusters (rotated offsets) after it, by
+  // the same thread for the same bodies: one parallel region, no barrier inside.
+  using Range = double (*)(ParticleSet &, const BodyLoopInput &, std::size_t, std::size_t);
+  const int discs = single_centred_discs_ ? (measure ? 2 : 1) : 0;
+  static constexpr Range undamped[3] = {kick_and_drift_range<false, false, 0>, kick_and_drift_range<false, false, 1>,
+                                        kick_and_drift_range<false, false, 2>};
+  static constexpr Range damped_unbooked[3] = {kick_and_drift_range<true, false, 0>,
+                                               kick_and_drift_range<true, false, 1>,
+                                               kick_and_drift_range<true, false, 2>};
+  static constexpr Range damped_booked[3] = {kick_and_drift_range<true, true, 0>, kick_and_drift_range<true, true, 1>,
+                                             kick_and_drift_range<true, true, 2>};
+  const Range range = (!damped ? undamped : book_damping ? damped_booked : damped_unbooked)[discs];
+  double max_move2 = 0.0;
+  const int n_threads = settings_.n_threads;
+#pragma omp parallel num_threads(n_threads) if (n_threads > 1) reduction(max : max_move2)
+  {
+    const auto [begin, end] = thread_bodies(nb);
+    max_move2 = range(p, in, begin, end);
+  }
   if (book_damping)
     accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
-
-  // Disc centres follow their bodies; the largest move since the last neighbour-list rebuild is
-  // measured in the same pass. A pass separate from the bodies' keeps both loops simple enough to
-  // vectorise (measured faster than one fused loop).
-  const bool measure = !rebuild_needed_;
-  const double max_move2 = p.update_disc_positions(settings_.n_threads, measure ? &disc_x_at_rebuild_ : nullptr,
-                                                   measure ? &disc_y_at_rebuild_ : nullptr);
   max_disc_move_ = std::sqrt(max_move2);
+}
+
+void DemSystem::final_kick(std::size_t begin, std::size_t end)
+{
+  BodyLoopInput in;
+  in.dt = time_step_;
+  in.alpha = settings_.local_damping;
+  in.damping_fx = damping_fx_.data();
+  in.damping_fy = damping_fy_.data();
+  in.damping_torque = damping_torque_.data();
+  in.scratch = body_scratch_.data();
+  if (in.alpha == 0.0)
+    final_kick_range<false, false>(particles_, in, begin, end);
+  else if (settings_.track_energy)
+    final_kick_range<true, true>(particles_, in, begin, end);
+  else
+    final_kick_range<true, false>(particles_, in, begin, end);
 }
 
 void DemSystem::move_walls()
@@ -372,6 +538,7 @@ void DemSystem::rebuild_if_needed()
     }
   if (!rebuild_needed_)
     return;
+  single_centred_discs_ = p.single_centred_discs();
   neighbour_search_.rebuild_pairs(p, skin_, settings_.n_threads, pairs_);
   for (std::size_t w = 0; w < walls_.size(); ++w)
     neighbour_search_.rebuild_wall(p, walls_[w], skin_, wall_contacts_[w]);
@@ -387,25 +554,31 @@ void DemSystem::rebuild_if_needed()
   ++n_rebuilds_;
 }
 
-void DemSystem::compute_pair_forces()
+void DemSystem::compute_forces_and_kick()
 {
   // The energy bookkeeping and the dashpot are fixed for a run: the loop is compiled for each
   // combination, so that a run without them does none of their work per contact.
   const bool dashpot = particle_law_.has_dashpot();
   if (settings_.track_energy)
-    dashpot ? compute_pair_forces_for<true, true>() : compute_pair_forces_for<true, false>();
+    dashpot ? compute_forces_and_kick_for<true, true>() : compute_forces_and_kick_for<true, false>();
   else
-    dashpot ? compute_pair_forces_for<false, true>() : compute_pair_forces_for<false, false>();
+    dashpot ? compute_forces_and_kick_for<false, true>() : compute_forces_and_kick_for<false, false>();
 }
 
-template <bool track_energy, bool with_dashpot>
-void DemSystem::compute_pair_forces_for()
+// Pairs [begin, end) of a chunk whose pairs start at `owner_begin`: each pair's force on disc i
+// is stored, and its force and moments go to both bodies. `checked`: whether a pair may touch a
+// body owned by an earlier chunk (PairContacts: only the first pairs of a chunk, up to
+// chunk_checked_end); such a body gets its moment stored for its owner to add later. Not inlined,
+// so that one thread and each chunk of several run the same machine code. Returns the number of
+// bonds broken.
+template <bool track_energy, bool with_dashpot, bool checked>
+__attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin, std::size_t end,
+                                                               std::size_t owner_begin)
 {
   ParticleSet &p = particles_;
   const LinearContactLaw &law = particle_law_;
   PairContacts &c = pairs_;
   const double dt = time_step_;
-  const std::size_t nb = p.n_bodies();
 
   // One contact: the force on disc i, stored per pair, and the moments on both bodies.
   // Returns false for a pair that is apart (and not bonded): its force is zero.
@@ -454,49 +627,53 @@ void DemSystem::compute_pair_forces_for()
     return true;
   };
 
-  // Body resultants start from gravity; + 0.0 turns a -0.0 into +0.0. A sum that starts at +0.0
-  // never becomes -0.0 (x + (-x) is +0.0), and adding +-0.0 to anything else changes no bit, so
-  // pairs that are apart (zero force) may be skipped and every body still sums exactly the same.
+  std::uint64_t broken = 0;
+  double moment_i, moment_j;
+  for (std::size_t q = begin; q < end; ++q)
+    if (evaluate(q, broken, moment_i, moment_j))
+      {
+        const std::uint32_t bi = p.disc_body[c.disc_i[q]], bj = p.disc_body[c.disc_j[q]];
+        if (!checked || c.body_first_pair[bi] >= owner_begin)
+          {
+            p.fx[bi] += c.force_x[q];
+            p.fy[bi] += c.force_y[q];
+            p.torque[bi] += moment_i;
+          }
+        else
+          c.torque_i[q] = moment_i;
+        if (!checked || c.body_first_pair[bj] >= owner_begin)
+          {
+            p.fx[bj] -= c.force_x[q];
+            p.fy[bj] -= c.force_y[q];
+            p.torque[bj] += moment_j;
+          }
+        else
+          c.torque_j[q] = moment_j;
+      }
+  return broken;
+}
+
+template <bool track_energy, bool with_dashpot>
+void DemSystem::compute_forces_and_kick_for()
+{
+  ParticleSet &p = particles_;
+  PairContacts &c = pairs_;
+  const double dt = time_step_;
+  const std::size_t nb = p.n_bodies();
+
+  // Body resultants start from gravity (kick_and_drift() set them); + 0.0 turned a -0.0 into
+  // +0.0. A sum that starts at +0.0 never becomes -0.0 (x + (-x) is +0.0), and adding +-0.0 to
+  // anything else changes no bit, so pairs that are apart (zero force) may be skipped and every
+  // body still sums exactly the same.
   //
   // Each chunk of pairs (one per thread, see PairContacts) adds each pair's force to the bodies
   // it owns as soon as it is computed; the bodies shared with later chunks are completed after
   // all chunks are done, in pair order. Every body therefore sums the same terms in the same
   // (ascending pair) order on any number of threads, without a separate pass over all bodies.
-  const double gx = settings_.gravity.x(), gy = settings_.gravity.y();
-  const auto start_from_gravity = [&](std::size_t b) {
-    p.fx[b] = p.mass[b] * gx + 0.0;
-    p.fy[b] = p.mass[b] * gy + 0.0;
-    p.torque[b] = 0.0;
-  };
-  // `only_chunk`: a compile-time true when there is one chunk, which owns every body.
-  const auto run_chunk = [&](std::size_t k, std::uint64_t &broken, auto only_chunk) __attribute__((always_inline)) {
-    const std::size_t begin = c.chunk_begin(k), end = c.chunk_begin(k + 1);
-    constexpr bool first_chunk = decltype(only_chunk)::value;
-    double moment_i, moment_j;
-    for (std::size_t q = begin; q < end; ++q)
-      if (evaluate(q, broken, moment_i, moment_j))
-        {
-          // The moments are stored only for the bodies shared between chunks, which are
-          // completed from the stored values (the one chunk of a single thread has none).
-          if constexpr (!first_chunk)
-            {
-              c.torque_i[q] = moment_i;
-              c.torque_j[q] = moment_j;
-            }
-          const std::uint32_t bi = p.disc_body[c.disc_i[q]], bj = p.disc_body[c.disc_j[q]];
-          if (first_chunk || c.body_first_pair[bi] >= begin)
-            {
-              p.fx[bi] += c.force_x[q];
-              p.fy[bi] += c.force_y[q];
-              p.torque[bi] += moment_i;
-            }
-          if (first_chunk || c.body_first_pair[bj] >= begin)
-            {
-              p.fx[bj] -= c.force_x[q];
-              p.fy[bj] -= c.force_y[q];
-              p.torque[bj] += moment_j;
-            }
-        }
+  const auto run_chunk = [&](std::size_t k) {
+    const std::size_t begin = c.chunk_begin(k), checked_end = c.chunk_checked_end[k], end = c.chunk_begin(k + 1);
+    return pair_range<track_energy, with_dashpot, true>(begin, checked_end, begin) +
+           pair_range<track_energy, with_dashpot, false>(checked_end, end, begin);
   };
   const auto complete_shared_body = [&](std::size_t k) {
     const std::uint32_t b = c.shared_body[k];
@@ -522,27 +699,31 @@ void DemSystem::compute_pair_forces_for()
     p.torque[b] = t;
   };
 
+  // Then the walls (serial: a few hundred contacts, added to the bodies in wall order after
+  // their pairs) and the second half kick. With several chunks and no sheets, all of it runs in
+  // one parallel region; with sheets, their forces come between the walls and the kick, outside.
   std::uint64_t broken = 0;
+  const bool one_region = c.n_chunks > 1 && sheets_.empty();
   if (c.n_chunks == 1) // outside a parallel region the compiler optimises the loop better
-    {
-      for (std::size_t b = 0; b < nb; ++b)
-        start_from_gravity(b);
-      run_chunk(0, broken, std::true_type{});
-    }
+    broken = pair_range<track_energy, with_dashpot, false>(0, c.size(), 0);
   else
     {
 #pragma omp parallel num_threads(settings_.n_threads) reduction(+ : broken)
       {
-#pragma omp for schedule(static)
-        for (std::size_t b = 0; b < nb; ++b)
-          start_from_gravity(b);
         // One chunk per iteration: chunks own disjoint bodies, so they may run in any order.
 #pragma omp for schedule(static, 1)
         for (std::size_t k = 0; k < c.n_chunks; ++k)
-          run_chunk(k, broken, std::false_type{});
+          broken += run_chunk(k);
 #pragma omp for schedule(static)
         for (std::size_t k = 0; k < c.shared_body.size(); ++k)
           complete_shared_body(k);
+        if (one_region)
+          {
+#pragma omp single
+            compute_wall_forces();
+            const auto [begin, end] = thread_bodies(nb);
+            final_kick(begin, end);
+          }
       }
     }
   n_broken_bonds_ += broken;
@@ -551,6 +732,25 @@ void DemSystem::compute_pair_forces_for()
       accumulated_.friction_dissipated += deterministic_sum(c.friction_work, settings_.n_threads);
       accumulated_.viscous_dissipated += deterministic_sum(c.viscous_work, settings_.n_threads);
     }
+  if (!one_region)
+    {
+      for (SparSheet &sheet : sheets_)
+        sheet.start_forces(settings_.gravity);
+      compute_wall_forces();
+      book_wall_work();
+      if (!sheets_.empty())
+        compute_sheet_forces_and_kick(); // adds the disc-sheet forces to the bodies before their kick
+      const int n_threads = settings_.n_threads;
+#pragma omp parallel num_threads(n_threads) if (n_threads > 1)
+      {
+        const auto [begin, end] = thread_bodies(nb);
+        final_kick(begin, end);
+      }
+    }
+  else
+    book_wall_work();
+  if (settings_.track_energy && settings_.local_damping > 0.0)
+    accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
 }
 
 void DemSystem::compute_wall_forces()
@@ -614,67 +814,26 @@ void DemSystem::compute_wall_forces()
         }
       wall.force_from_particles = total;
       wall.n_contacts = n_touching;
-      if (settings_.track_energy && dt > 0.0)
-        {
-          accumulated_.friction_dissipated += friction;
-          accumulated_.viscous_dissipated += viscous;
-          // Work of the wall on the particles, trapezoidal in time.
-          accumulated_.boundary_work -= 0.5 * (total + wall_force_previous_[w]).dot(wall.velocity) * dt;
-        }
-      wall_force_previous_[w] = total;
+      wall_friction_work_[w] = friction;
+      wall_viscous_work_[w] = viscous;
     }
 }
 
-void DemSystem::gather_forces_and_kick()
+void DemSystem::book_wall_work()
 {
-  ParticleSet &p = particles_;
-  const std::size_t nb = p.n_bodies();
-  for (SparSheet &sheet : sheets_)
-    sheet.start_forces(settings_.gravity);
-  compute_wall_forces();
-  if (!sheets_.empty())
-    compute_sheet_forces_and_kick(); // adds the disc-sheet forces to the bodies before their kick
-
-  const double half = 0.5 * time_step_, alpha = settings_.local_damping;
-  const bool book_damping = settings_.track_energy && alpha > 0.0;
-  if (alpha == 0.0)
+  const double dt = time_step_;
+  for (std::size_t w = 0; w < walls_.size(); ++w)
     {
-      // No local damping (dynamics): the plain second half kick; damping_* stay zero.
-#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
-      for (std::size_t b = 0; b < nb; ++b)
+      const Vec2 total = walls_[w].force_from_particles;
+      if (settings_.track_energy && dt > 0.0)
         {
-          p.vx[b] += half * p.fx[b] * p.inverse_mass[b];
-          p.vy[b] += half * p.fy[b] * p.inverse_mass[b];
-          p.omega[b] += half * p.torque[b] * p.inverse_inertia[b];
+          accumulated_.friction_dissipated += wall_friction_work_[w];
+          accumulated_.viscous_dissipated += wall_viscous_work_[w];
+          // Work of the wall on the particles, trapezoidal in time.
+          accumulated_.boundary_work -= 0.5 * (total + wall_force_previous_[w]).dot(walls_[w].velocity) * dt;
         }
-      return;
+      wall_force_previous_[w] = total;
     }
-#pragma omp parallel for schedule(static) num_threads(settings_.n_threads)
-  for (std::size_t b = 0; b < nb; ++b)
-    {
-      if (p.inverse_mass[b] == 0.0)
-        {
-          damping_fx_[b] = damping_fy_[b] = damping_torque_[b] = body_scratch_[b] = 0.0;
-          continue;
-        }
-      // -alpha |F| sign(v), with sign(0) = 0
-      const auto damping = [alpha](double force, double velocity) {
-        return -alpha * std::abs(force) * static_cast<double>((velocity > 0.0) - (velocity < 0.0));
-      };
-      damping_fx_[b] = damping(p.fx[b], p.vx[b]);
-      damping_fy_[b] = damping(p.fy[b], p.vy[b]);
-      damping_torque_[b] = damping(p.torque[b], p.omega[b]);
-      const double vx0 = p.vx[b], vy0 = p.vy[b], w0 = p.omega[b];
-      p.vx[b] += half * (p.fx[b] + damping_fx_[b]) * p.inverse_mass[b];
-      p.vy[b] += half * (p.fy[b] + damping_fy_[b]) * p.inverse_mass[b];
-      p.omega[b] += half * (p.torque[b] + damping_torque_[b]) * p.inverse_inertia[b];
-      if (book_damping)
-        body_scratch_[b] = 0.5 * half *
-                           (damping_fx_[b] * (vx0 + p.vx[b]) + damping_fy_[b] * (vy0 + p.vy[b]) +
-                            damping_torque_[b] * (w0 + p.omega[b]));
-    }
-  if (book_damping)
-    accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
 }
 
 bool DemSystem::sheet_contacts_stale(double disc_move, double wall_move) const
@@ -884,6 +1043,7 @@ void DemSystem::restore_state(DemSystemState s)
     pairs_.resize_results();
   build_body_adjacency(particles_, pairs_, static_cast<std::size_t>(settings_.n_threads));
   body_scratch_.assign(nb, 0.0);
+  single_centred_discs_ = particles_.single_centred_discs();
 }
 
 std::size_t DemSystem::n_touching_pairs() const

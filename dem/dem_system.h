@@ -13,6 +13,14 @@
 // Every loop visits bodies and contacts in a fixed order and each result is written by exactly
 // one thread, so a run gives the same numbers, bit for bit, on any number of threads.
 //
+// Threads: a step is two parallel regions (without sheets). The first is one pass over the
+// bodies (half kick, drift, forces restarted from gravity, single centred discs placed, the
+// largest move since the last rebuild); each thread owns a fixed contiguous range of bodies.
+// Then, serially, the walls move and the lists are rebuilt if needed. The second region is the
+// pair loop (one chunk of pairs per thread, PairContacts), the completion of the bodies shared by
+// two chunks, the walls (one thread) and the second half kick (the same body ranges). Each
+// fork, join or barrier costs microseconds, and on a loaded machine a scheduler slice.
+//
 // Geosynthetic sheets (spar_sheet.h) are advanced by the same scheme and local damping; their
 // physics (axial forces, disc-sheet and node-wall contacts) lives in spar_sheet.* and
 // sheet_contacts.*, called from here. A system without sheets runs exactly as before.
@@ -191,11 +199,17 @@ private:
   void kick_and_drift();
   void move_walls();
   void rebuild_if_needed();
-  void compute_pair_forces();
+  void start_forces_from_gravity();
+  /// Pair and wall forces of the new positions (on top of gravity, set by kick_and_drift()),
+  /// then the second half kick: one parallel region on several threads (without sheets).
+  void compute_forces_and_kick();
   template <bool track_energy, bool with_dashpot>
-  void compute_pair_forces_for();
-  void compute_wall_forces();
-  void gather_forces_and_kick();
+  void compute_forces_and_kick_for();
+  template <bool track_energy, bool with_dashpot, bool checked>
+  std::uint64_t pair_range(std::size_t begin, std::size_t end, std::size_t owner_begin);
+  void compute_wall_forces();   ///< forces only; book_wall_work() books their energy terms
+  void book_wall_work();
+  void final_kick(std::size_t begin, std::size_t end); ///< second half kick of bodies [begin, end)
   void check_finite() const;
   // Sheets (called only when there are sheets).
   bool sheet_contacts_stale(double disc_move, double wall_move) const;
@@ -208,6 +222,7 @@ private:
   std::vector<Wall> walls_;
   std::vector<WallContacts> wall_contacts_;
   std::vector<Vec2> wall_force_previous_;
+  std::vector<double> wall_friction_work_, wall_viscous_work_; ///< of the last evaluation, per wall
   PairContacts pairs_;
   NeighbourSearch neighbour_search_;
   std::vector<SparSheet> sheets_;
@@ -220,6 +235,7 @@ private:
   std::uint64_t step_count_ = 0;
   bool rebuild_needed_ = true;
   bool forces_initialised_ = false;
+  bool single_centred_discs_ = false; ///< ParticleSet::single_centred_discs(), checked at rebuilds
   std::uint64_t n_rebuilds_ = 0;
   std::uint64_t n_broken_bonds_ = 0;
 

@@ -167,43 +167,23 @@ double ParticleSet::update_disc_positions(int n_threads, const SoaVector<double>
 {
   const std::size_t nb = x.size(), nd = disc_radius.size();
   const bool measure = reference_x && reference_y && reference_x->size() == nd && reference_y->size() == nd;
-  double max_move2 = 0.0;
-  // A loop over bodies, so that a cluster's rotation is turned into cos and sin once for all
-  // its discs (sincos is the dearest operation here: a third of a cluster system's step when
-  // taken per disc). A single disc at its body's centre of mass needs no rotation at all.
   const double *reference_x_data = measure ? reference_x->data() : nullptr;
   const double *reference_y_data = measure ? reference_y->data() : nullptr;
+  double max_move2 = 0.0;
 #pragma omp parallel for schedule(static) num_threads(n_threads) reduction(max : max_move2)
   for (std::size_t b = 0; b < nb; ++b)
-    {
-      const std::uint32_t begin = first_disc[b], end = begin + n_discs[b];
-      if (end == begin + 1 && disc_offset_x[begin] == 0.0 && disc_offset_y[begin] == 0.0)
-        {
-          const double xb = x[b], yb = y[b];
-          disc_x[begin] = xb;
-          disc_y[begin] = yb;
-          if (measure)
-            {
-              const double dx = xb - reference_x_data[begin], dy = yb - reference_y_data[begin];
-              max_move2 = std::max(max_move2, dx * dx + dy * dy);
-            }
-          continue;
-        }
-      const double c = std::cos(rotation[b]), s = std::sin(rotation[b]);
-      for (std::uint32_t d = begin; d < end; ++d)
-        {
-          const double ox = disc_offset_x[d], oy = disc_offset_y[d];
-          disc_x[d] = x[b] + c * ox - s * oy;
-          disc_y[d] = y[b] + s * ox + c * oy;
-        }
-      if (measure)
-        for (std::uint32_t d = begin; d < end; ++d)
-          {
-            const double dx = disc_x[d] - reference_x_data[d], dy = disc_y[d] - reference_y_data[d];
-            max_move2 = std::max(max_move2, dx * dx + dy * dy);
-          }
-    }
+    max_move2 = std::max(max_move2, place_discs(b, reference_x_data, reference_y_data));
   return max_move2;
+}
+
+bool ParticleSet::single_centred_discs() const
+{
+  if (n_discs_total() != n_bodies())
+    return false;
+  for (std::size_t b = 0; b < n_bodies(); ++b)
+    if (first_disc[b] != b || n_discs[b] != 1 || disc_offset_x[b] != 0.0 || disc_offset_y[b] != 0.0)
+      return false;
+  return true;
 }
 
 double ParticleSet::body_area(std::size_t b) const

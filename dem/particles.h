@@ -5,6 +5,8 @@
 #include "conventions.h"
 #include "soa_vector.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -54,11 +56,55 @@ struct ParticleSet
   double update_disc_positions(int n_threads = 1, const SoaVector<double> *reference_x = nullptr,
                                const SoaVector<double> *reference_y = nullptr);
 
+  /// Places the discs of body b from its position and rotation (what update_disc_positions()
+  /// does for every body). With reference positions (one per disc), returns the largest squared
+  /// displacement of those discs from them; 0 otherwise.
+  inline double place_discs(std::size_t b, const double *reference_x, const double *reference_y);
+
+  /// True if every body is one disc at its centre of mass and body b owns disc b: the disc
+  /// centres are then copies of the body centres.
+  bool single_centred_discs() const;
+
   /// Solid area of body b [m^2 per m]: mass / density is not stored, so this is from geometry.
   double body_area(std::size_t b) const;
 
   void reserve(std::size_t n_bodies, std::size_t n_discs);
 };
+
+inline double ParticleSet::place_discs(std::size_t b, const double *reference_x, const double *reference_y)
+{
+  // A loop over bodies, so that a cluster's rotation is turned into cos and sin once for all
+  // its discs (sincos is the dearest operation here: a third of a cluster system's step when
+  // taken per disc). A single disc at its body's centre of mass needs no rotation at all.
+  double max_move2 = 0.0;
+  const std::uint32_t begin = first_disc[b], end = begin + n_discs[b];
+  if (end == begin + 1 && disc_offset_x[begin] == 0.0 && disc_offset_y[begin] == 0.0)
+    {
+      const double xb = x[b], yb = y[b];
+      disc_x[begin] = xb;
+      disc_y[begin] = yb;
+      if (reference_x)
+        {
+          const double dx = xb - reference_x[begin], dy = yb - reference_y[begin];
+          max_move2 = dx * dx + dy * dy;
+        }
+      return max_move2;
+    }
+  const double c = std::cos(rotation[b]), s = std::sin(rotation[b]);
+  for (std::uint32_t d = begin; d < end; ++d)
+    {
+      const double ox = disc_offset_x[d], oy = disc_offset_y[d];
+      disc_x[d] = x[b] + c * ox - s * oy;
+      disc_y[d] = y[b] + s * ox + c * oy;
+    }
+  if (reference_x)
+    for (std::uint32_t d = begin; d < end; ++d)
+      {
+        const double dx = disc_x[d] - reference_x[d], dy = disc_y[d] - reference_y[d];
+        max_move2 = std::max(max_move2, dx * dx + dy * dy);
+      }
+  return max_move2;
+}
 
 /// The same bodies renumbered so that bodies close in space are close in memory: bodies are
 /// ordered by the cell of side `cell_size` holding their centre of mass, cells visited in Morton

@@ -347,19 +347,20 @@ namespace
 /// breakage. They start near contact (radii 0.92-1 r_max on a 2.05 r_max grid: every grid
 /// neighbour within the Verlet skin), so that the pair list holds more than 4096 pairs from the
 /// first step and the deterministic sums run over several blocks, in parallel.
-DemSystem deposition(int n_threads)
+DemSystem deposition(int n_threads, int cluster_every = 10, double local_damping = 0.7, bool track_energy = true)
 {
   constexpr int n_x = 60, n_y = 50;
   constexpr double pitch = 2.05;
   DemSettings s;
   s.n_threads = n_threads;
-  s.local_damping = 0.7;
+  s.local_damping = local_damping;
+  s.track_energy = track_energy;
   ContactParameters c = law(20.0, 0.5);
   c.tensile_strength = 2.0;
   c.shear_strength = 2.0;
   c.bond_new_contacts = true; // cementing: contacts bond as they form
   const LinearContactLaw contact(c);
-  DemSystem system(grid_sample(n_x, n_y, 0.1, 10, 7, pitch, 0.92), contact, s);
+  DemSystem system(grid_sample(n_x, n_y, 0.1, cluster_every, 7, pitch, 0.92), contact, s);
   add_box(system, n_x * pitch * r_max, n_y * pitch * r_max, LinearContactLaw(law(20.0, 0.5)));
   return system;
 }
@@ -430,6 +431,47 @@ TEST(Threads, OneAndTwoThreadsBitForBit)
   EXPECT_GT(one.energy().viscous_dissipated, 0.0);
   EXPECT_GT(one.energy().friction_dissipated, 0.0);
   EXPECT_GT(one.n_neighbour_rebuilds(), 5u);
+}
+
+// The same with single discs only, the case whose discs are placed in the bodies' first pass
+// (ParticleSet::single_centred_discs), with and without local damping and energy bookkeeping
+// (each a different body loop; without damping and bookkeeping, the benchmark's loops). On
+// several threads each chunk of pairs checks body ownership only in its first pairs
+// (PairContacts::chunk_checked_end), and adds the rest at once: the test checks that this part
+// exists and is a small share of the pairs, and that the sums still come out the same.
+TEST(Threads, SingleDiscsOneTwoThreeThreadsBitForBit)
+{
+  for (const bool damped : {true, false})
+    {
+      SCOPED_TRACE(damped ? "local damping, energy bookkeeping" : "no local damping, no energy bookkeeping");
+      const double alpha = damped ? 0.7 : 0.0;
+      DemSystem one = deposition(1, 0, alpha, damped), two = deposition(2, 0, alpha, damped),
+                three = deposition(3, 0, alpha, damped);
+      ASSERT_TRUE(one.particles().single_centred_discs());
+      for (int k = 0; k < 300; ++k)
+        {
+          one.step();
+          two.step();
+          three.step();
+        }
+      expect_identical(one, two);
+      expect_identical(one, three);
+      for (const DemSystem *system : {&two, &three})
+        {
+          const PairContacts &c = system->pair_contacts();
+          std::size_t checked = 0;
+          for (std::size_t k = 0; k < c.n_chunks; ++k)
+            checked += c.chunk_checked_end[k] - c.chunk_begin(k);
+          EXPECT_GT(checked, 0u);
+          EXPECT_LT(checked, c.size() / 5);
+        }
+      EXPECT_GT(one.n_touching_pairs(), 300u);
+      EXPECT_GT(one.n_neighbour_rebuilds(), 5u);
+      if (damped)
+        {
+          EXPECT_GT(one.energy().local_damping_dissipated, 0.0);
+        }
+    }
 }
 
 // Contact parameters are checked where they enter, with a message naming the parameter.
