@@ -268,7 +268,8 @@ dem::StoredSample campaign_sample(const BiaxialCampaign &campaign, bool show_pro
 
 /// One test on its own copy of the sample.
 dem::BiaxialCurve run_one_test(const BiaxialCampaign &campaign, const dem::StoredSample &sample, double sigma_0,
-                               int n_threads, const std::function<void(double)> &progress)
+                               int n_threads, const std::function<void(double)> &progress,
+                               const std::function<int()> &thread_budget)
 {
   dem::RedfSample copy = dem::restore_sample(sample, n_threads);
   // Mean particle size for the inertial number: the diameter of a disc of the mean area.
@@ -276,7 +277,8 @@ dem::BiaxialCurve run_one_test(const BiaxialCampaign &campaign, const dem::Store
   const double mean_diameter = 2.0 * std::sqrt(dem::total_solid_area(p) / (dem::pi * p.n_bodies()));
   dem::BiaxialSpec test = campaign.test;
   test.confining_stress = sigma_0;
-  return dem::run_biaxial_test(copy.system, copy.box, test, mean_diameter, sample.spec.density, progress);
+  return dem::run_biaxial_test(copy.system, copy.box, test, mean_diameter, sample.spec.density, progress,
+                               thread_budget);
 }
 } // namespace
 
@@ -289,7 +291,12 @@ std::vector<dem::BiaxialCurve> run_biaxial_campaign(const BiaxialCampaign &campa
   // The tests run side by side, each on its own copy of the sample: with n threads and k tests,
   // min(n, k) at a time on n / min(n, k) threads each. A few thousand particles keep two threads
   // of one system waiting for each other at every step; two systems on a thread each do not.
-  // The curves do not depend on this: a DemSystem gives the same numbers on any thread count.
+  // When no test is left to start, a worker that finishes gives its threads to those still
+  // running (each test may use n / (workers still busy) threads): with 2 threads and the three
+  // default confinements, the 10 kPa test runs on one thread, the 20 and 50 kPa tests one after
+  // the other on the other, and the 50 kPa test ends on both.
+  // The curves do not depend on this: a DemSystem gives the same numbers on any thread count,
+  // and one moved to another thread count mid-run continues bit for bit.
   const std::size_t n_tests = campaign.confining_stresses.size();
   const int n_threads = std::max(1, campaign.sample.n_threads);
   const std::size_t n_workers = std::min<std::size_t>(static_cast<std::size_t>(n_threads), n_tests);
@@ -311,6 +318,8 @@ std::vector<dem::BiaxialCurve> run_biaxial_campaign(const BiaxialCampaign &campa
                           1.0);
   std::atomic<std::size_t> next{0};
   std::atomic<bool> failed{false};
+  std::atomic<int> busy_workers{static_cast<int>(n_workers)};
+  const std::function<int()> thread_budget = [&] { return std::max(threads_per_test, n_threads / busy_workers.load()); };
   const auto start = std::chrono::steady_clock::now();
   const auto worker = [&] {
     for (std::size_t k = next++; k < n_tests && !failed; k = next++)
@@ -325,7 +334,8 @@ std::vector<dem::BiaxialCurve> run_biaxial_campaign(const BiaxialCampaign &campa
           {
             curves[test] = run_one_test(campaign, sample, campaign.confining_stresses[test], threads_per_test,
                                         show_progress ? std::function<void(double)>(report)
-                                                      : std::function<void(double)>());
+                                                      : std::function<void(double)>(),
+                                        thread_budget);
           }
         catch (...)
           {
@@ -333,6 +343,7 @@ std::vector<dem::BiaxialCurve> run_biaxial_campaign(const BiaxialCampaign &campa
             failed = true;
           }
       }
+    --busy_workers; // no test left to start: the tests still running may take this thread
   };
   std::vector<std::thread> helpers;
   for (std::size_t w = 1; w < n_workers; ++w)
@@ -348,6 +359,10 @@ std::vector<dem::BiaxialCurve> run_biaxial_campaign(const BiaxialCampaign &campa
       progress.finish();
       std::cerr << "biaxial: consolidation and compression of the " << n_tests << " tests took " << seconds_since(start)
                 << " s\n";
+      for (const dem::BiaxialCurve &curve : curves)
+        std::cerr << "biaxial: " << kpa_label(curve.confining_stress) << ": " << curve.consolidation_steps
+                  << " consolidation and " << curve.compression_steps << " compression steps, ended on "
+                  << curve.final_threads << " thread(s)\n";
     }
   for (const dem::BiaxialCurve &curve : curves)
     if (curve.inertial_number > 1e-3)

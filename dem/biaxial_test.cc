@@ -34,8 +34,37 @@ std::uint64_t consolidate_isotropically(DemSystem &system, const RectangularBox 
     }
 }
 
+void move_to_threads(DemSystem &system, int n_threads)
+{
+  if (n_threads < 1)
+    throw std::invalid_argument("move_to_threads: at least one thread");
+  if (system.settings().n_threads == n_threads)
+    return;
+  DemSettings settings = system.settings();
+  settings.n_threads = n_threads;
+  DemSystemState state = system.export_state();
+  // On several threads the system stores each pair's moments, and reads those of a pair that
+  // stays apart as the zero written when it came apart. On one thread it stores none: a pair that
+  // came apart then still holds the moment of its last contact on several threads (1 -> 2 -> 1
+  // -> 2 threads gave another curve). Apart pairs get the zero a straight run leaves them.
+  PairContacts &pairs = state.pairs;
+  for (std::size_t q = 0; q < pairs.size(); ++q)
+    if (!pairs.state[q].touching && !pairs.state[q].bonded)
+      pairs.torque_i[q] = pairs.torque_j[q] = 0.0;
+  // Built like a system resumed from a checkpoint: its particles and walls, then the whole state
+  // (contact histories, servo integrals, Verlet list, time step).
+  DemSystem moved(state.particles, LinearContactLaw(state.particle_contact), settings);
+  for (const Wall &wall : state.walls)
+    moved.add_wall(wall);
+  if (system.sheet_local_damping() >= 0.0) // negative: the settings' (not part of the state)
+    moved.set_sheet_local_damping(system.sheet_local_damping());
+  moved.restore_state(std::move(state));
+  system = std::move(moved);
+}
+
 BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, const BiaxialSpec &spec,
-                              double mean_diameter, double density, const std::function<void(double)> &progress)
+                              double mean_diameter, double density, const std::function<void(double)> &progress,
+                              const std::function<int()> &thread_budget)
 {
   if (!(spec.confining_stress > 0.0))
     throw std::invalid_argument("biaxial test: the confining stress must be positive");
@@ -65,12 +94,11 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
   curve.initial_porosity = 1.0 - total_solid_area(system.particles()) / (H0 * W0);
   curve.consolidation_steps = consolidation_steps;
 
-  std::vector<Wall> &walls = system.walls();
   // The lateral walls must be able to follow the sample's dilation: allow them ten times V.
   box.servo_sides(system, spec.confining_stress, true, 0.0, false, std::max(spec.servo_max_speed, 10.0 * speed));
-  walls[box.bottom].control = WallControl::prescribed_velocity;
-  walls[box.bottom].velocity = Vec2::Zero();
-  walls[box.top].control = WallControl::prescribed_velocity;
+  system.walls()[box.bottom].control = WallControl::prescribed_velocity;
+  system.walls()[box.bottom].velocity = Vec2::Zero();
+  system.walls()[box.top].control = WallControl::prescribed_velocity;
   // The top wall accelerates uniformly from rest to V over the first ramp_strain of axial strain:
   // started at V at once, it would send a stress wave through the sample (a jump of about
   // rho c V, some 10 kPa at V = 9 cm/s) that spoils the first points, where the modulus is read.
@@ -97,8 +125,10 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
   double next_record = spec.record_interval;
   for (;;)
     {
+      if (thread_budget)
+        move_to_threads(system, thread_budget());
       const double elapsed = dt * static_cast<double>(curve.compression_steps);
-      walls[box.top].velocity = Vec2(0.0, -speed * (elapsed < ramp_time ? elapsed / ramp_time : 1.0));
+      system.walls()[box.top].velocity = Vec2(0.0, -speed * (elapsed < ramp_time ? elapsed / ramp_time : 1.0));
       box.update_loaded_lengths(system);
       system.step();
       ++curve.compression_steps;
@@ -116,7 +146,8 @@ BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, cons
       if (strain >= spec.final_axial_strain)
         break;
     }
-  walls[box.top].velocity = Vec2::Zero();
+  system.walls()[box.top].velocity = Vec2::Zero();
+  curve.final_threads = system.settings().n_threads;
   return curve;
 }
 

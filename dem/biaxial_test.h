@@ -63,16 +63,26 @@ struct BiaxialCurve
   double inertial_number = 0.0; ///< I = strain rate x mean diameter x sqrt(density / sigma_0)
   std::uint64_t consolidation_steps = 0;
   std::uint64_t compression_steps = 0;
+  int final_threads = 0;        ///< threads of the system when the test ended (see thread_budget)
   std::vector<BiaxialPoint> points;
 };
+
+/// Rebuilds `system` on `n_threads` threads from its complete state: it continues bit for bit as
+/// it would have (a DemSystem's results do not depend on its thread count). Allocates: for a
+/// change now and then (a test given the thread of one that finished), not for every step.
+void move_to_threads(DemSystem &system, int n_threads);
 
 /// Consolidates the sample held by `system` in `box` to sigma_0, then shears it (its walls are
 /// reused: lateral walls servo-controlled, the bottom wall fixed, the top wall driven down).
 /// `mean_diameter` and `density` give the inertial number. Strains are measured from the
-/// consolidated state, and initial_porosity is that state's.
+/// consolidated state, and initial_porosity is that state's. `thread_budget` (optional), asked
+/// before every compression step, says how many threads the test may use now; when it changes,
+/// the system moves onto that many (move_to_threads), so tests run side by side can take over
+/// the threads of those that have finished without changing any result.
 BiaxialCurve run_biaxial_test(DemSystem &system, const RectangularBox &box, const BiaxialSpec &spec,
                               double mean_diameter, double density,
-                              const std::function<void(double)> &progress = {});
+                              const std::function<void(double)> &progress = {},
+                              const std::function<int()> &thread_budget = {});
 
 /// Macroscopic parameters read from biaxial curves at one or more confining stresses.
 struct BiaxialParameters

@@ -126,3 +126,49 @@ TEST(BiaxialCommand, SampleFileIsMadeOnceAndReused)
   EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
   fs::remove_all(d);
 }
+
+// The campaign's layouts: on one thread the tests run one after the other; on two, two at a
+// time, and when no test is left to start the one still running takes the thread of the one that
+// finished (its system moved to two threads mid-run). Every curve is the same, bit for bit.
+TEST(BiaxialCommand, CurvesDoNotDependOnTheThreadLayout)
+{
+  geohybrid::apps::BiaxialCampaign campaign;
+  campaign.sample.n_particles = 200;
+  campaign.sample.width = 0.05;
+  campaign.sample.height = 0.08;
+  campaign.sample.porosity_tolerance = 0.01;
+  campaign.sample.particle_contact.normal_stiffness = 7e7;
+  campaign.sample.particle_contact.shear_stiffness = 3.5e7;
+  campaign.sample.particle_contact.friction_angle_deg = 10.0;
+  campaign.sample.wall_contact = campaign.sample.particle_contact;
+  campaign.sample.wall_contact.friction_angle_deg = 0.0;
+  campaign.test.target_inertial_number = 1e-3;
+  campaign.test.final_axial_strain = 0.015;
+  campaign.test.ramp_strain = 0.005;
+  campaign.test.record_interval = 0.001;
+  campaign.confining_stresses = {20e3, 50e3, 30e3};
+
+  campaign.sample.n_threads = 1;
+  const std::vector<geohybrid::dem::BiaxialCurve> one = geohybrid::apps::run_biaxial_campaign(campaign, false);
+  campaign.sample.n_threads = 2;
+  const std::vector<geohybrid::dem::BiaxialCurve> two = geohybrid::apps::run_biaxial_campaign(campaign, false);
+  ASSERT_EQ(one.size(), 3u);
+  ASSERT_EQ(two.size(), 3u);
+  int moved = 0;
+  for (std::size_t t = 0; t < 3; ++t)
+    {
+      EXPECT_EQ(one[t].final_threads, 1);
+      moved += two[t].final_threads == 2;
+      EXPECT_EQ(two[t].consolidation_steps, one[t].consolidation_steps);
+      EXPECT_EQ(two[t].compression_steps, one[t].compression_steps);
+      ASSERT_EQ(two[t].points.size(), one[t].points.size());
+      for (std::size_t k = 0; k < one[t].points.size(); ++k)
+        {
+          EXPECT_EQ(two[t].points[k].axial_strain, one[t].points[k].axial_strain) << "test " << t << ", point " << k;
+          EXPECT_EQ(two[t].points[k].lateral_strain, one[t].points[k].lateral_strain) << "test " << t << ", point " << k;
+          EXPECT_EQ(two[t].points[k].axial_stress, one[t].points[k].axial_stress) << "test " << t << ", point " << k;
+          EXPECT_EQ(two[t].points[k].lateral_stress, one[t].points[k].lateral_stress) << "test " << t << ", point " << k;
+        }
+    }
+  EXPECT_EQ(moved, 1); // the last test running took the freed thread
+}

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+
 using namespace geohybrid::dem;
 
 // A regular hexagonal packing of equal discs has the isotropic 2D stiffness (per unit thickness)
@@ -153,6 +155,61 @@ TEST(Biaxial, ConsolidationReachesTheStress)
   EXPECT_NEAR(sample.box.vertical_stress(sample.system), 50e3, 0.02 * 50e3);
   EXPECT_LT(unbalanced_force_ratio(sample.system), 1e-3);
   EXPECT_EQ(consolidate_isotropically(sample.system, sample.box, spec), 0u);
+}
+
+// A test whose system moves to another thread count mid-run (as a campaign gives a running test
+// the thread of one that finished) records the same curve, bit for bit, as the straight run on
+// one thread: 1 -> 2 threads during the speed ramp, 2 -> 1 and 1 -> 2 again later.
+TEST(Biaxial, MovedToOtherThreadCountsMidRunIsBitForBitTheStraightRun)
+{
+  RedfSpec small = tiny_sample(10.0);
+  small.n_particles = 120;
+  small.width = 0.03;
+  small.height = 0.04;
+  const RedfSample sample = make_redf_sample(small);
+  BiaxialSpec test;
+  test.confining_stress = 30e3; // consolidated first: the move happens after that too
+  test.final_axial_strain = 0.01;
+  test.ramp_strain = 0.004;
+  test.record_interval = 5e-4;
+  test.target_inertial_number = 1e-3;
+  const double d = 2.0 * std::sqrt(total_solid_area(sample.system.particles()) / (pi * small.n_particles));
+
+  RedfSample straight = sample;
+  const BiaxialCurve expected = run_biaxial_test(straight.system, straight.box, test, d, small.density);
+  ASSERT_GT(expected.compression_steps, 2000u);
+  EXPECT_EQ(expected.final_threads, 1);
+
+  RedfSample moved = sample;
+  std::uint64_t polls = 0;
+  const std::function<int()> budget = [&] {
+    ++polls;
+    return polls < 300 ? 1 : polls < 1000 ? 2 : polls < 1500 ? 1 : 2;
+  };
+  const BiaxialCurve curve = run_biaxial_test(moved.system, moved.box, test, d, small.density, {}, budget);
+  EXPECT_EQ(polls, curve.compression_steps);
+  EXPECT_EQ(curve.final_threads, 2);
+  EXPECT_EQ(moved.system.settings().n_threads, 2);
+  EXPECT_EQ(curve.compression_steps, expected.compression_steps);
+  ASSERT_EQ(curve.points.size(), expected.points.size());
+  for (std::size_t k = 0; k < curve.points.size(); ++k)
+    {
+      EXPECT_EQ(curve.points[k].axial_strain, expected.points[k].axial_strain) << "point " << k;
+      EXPECT_EQ(curve.points[k].lateral_strain, expected.points[k].lateral_strain) << "point " << k;
+      EXPECT_EQ(curve.points[k].axial_stress, expected.points[k].axial_stress) << "point " << k;
+      EXPECT_EQ(curve.points[k].lateral_stress, expected.points[k].lateral_stress) << "point " << k;
+    }
+  // The whole state too: positions and velocities of every body.
+  const ParticleSet &a = straight.system.particles(), &b = moved.system.particles();
+  ASSERT_EQ(a.n_bodies(), b.n_bodies());
+  for (std::size_t i = 0; i < a.n_bodies(); ++i)
+    {
+      ASSERT_EQ(a.x[i], b.x[i]) << "body " << i;
+      ASSERT_EQ(a.y[i], b.y[i]) << "body " << i;
+      ASSERT_EQ(a.vx[i], b.vx[i]) << "body " << i;
+      ASSERT_EQ(a.omega[i], b.omega[i]) << "body " << i;
+    }
+  EXPECT_THROW(move_to_threads(moved.system, 0), std::invalid_argument);
 }
 
 TEST(Biaxial, BadInputRefused)
