@@ -291,6 +291,16 @@ double slab_porosity(const ParticleSet &p, double x_min, double x_max, double y_
   return 1.0 - solid / ((x_max - x_min) * (y_top - y_bottom));
 }
 
+DemSettings tank_settling_settings(const TankFillingSpec &t)
+{
+  DemSettings s;
+  s.gravity = Vec2(0.0, -t.gravity);
+  s.local_damping = t.local_damping;
+  s.n_threads = t.n_threads;
+  s.track_energy = false;
+  return s;
+}
+
 FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<void(double)> &progress)
 {
   check_spec(t);
@@ -333,13 +343,9 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
     return static_cast<std::size_t>(std::llround(static_cast<double>(t.n_particles) * cumulative_space[k] / t.height));
   };
 
-  DemSettings growth_settings;
+  const DemSettings settling_settings = tank_settling_settings(t);
+  DemSettings growth_settings = settling_settings;
   growth_settings.gravity = Vec2::Zero();
-  growth_settings.local_damping = t.local_damping;
-  growth_settings.n_threads = t.n_threads;
-  growth_settings.track_energy = false;
-  DemSettings settling_settings = growth_settings;
-  settling_settings.gravity = Vec2(0.0, -t.gravity);
 
   const LinearContactLaw material(t.particle_contact);
   std::vector<TankLayer> layers;
