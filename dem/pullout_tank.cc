@@ -333,9 +333,13 @@ PullOut::PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &pr
 {
   check_pull_spec(spec);
   ramp_time_ = 2.0 * spec.ramp_displacement / spec.rate;
-  // The clamp's velocity and everything else are in the restored state; the sheet's damping
-  // is a setting of the system, not of its state.
+  // The sheet's damping is a setting of the system, not of its state. The clamp's velocity is
+  // in the state, and is what clamp_speed() gives for the same spec (each step prescribes it
+  // for the next): prescribed again, it changes nothing when resuming the same pull, and it
+  // makes a pull of the same filled tank at another rate start at its own speed.
   system.set_sheet_local_damping(spec.sheet_local_damping);
+  if (!progress.finished)
+    system.sheets().at(0).prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
   last_point_.head_displacement = head_displacement();
   last_point_.head_tension = head_tension(system);
 }

@@ -346,10 +346,21 @@ TEST(PullOutCommand, ResumesAStoppedPullBitForBit)
   ASSERT_EQ(status, 0);
   EXPECT_NE(said.find("filling the tank again from the start"), std::string::npos) << said;
 
+  // The same tank pulled at another rate: a run at 20 mm/s keeps its filled tank, and a run at
+  // the straight run's 10 mm/s resumed from it is the straight run (the rate-halving check
+  // pulls one tank at every rate so).
+  const std::string fast = write_resume_input(d, "fast"), from_fast = write_resume_input(d, "from_fast");
+  ASSERT_EQ(run_pullout_command(fast, false, {{"Pull/rate", "0.02"}}), 0);
+  fs::create_directories(d / "from_fast");
+  fs::copy_file(d / "fast" / "filled_tank.h5", d / "from_fast" / "checkpoint.h5");
+  ASSERT_EQ(run_pullout_command(from_fast, true), 0);
+  EXPECT_TRUE(contents_of(d / "from_fast" / "pullout_curve.csv") == contents_of(d / "straight" / "pullout_curve.csv"));
+  EXPECT_FALSE(contents_of(d / "fast" / "pullout_curve.csv") == contents_of(d / "straight" / "pullout_curve.csv"));
+
   for (const char *file : {"pullout_curve.csv", "pullout_curve_sheet.csv", "sheet_displacements.csv", "sheet_tension.csv",
                            "surface_uplift.csv", "grain_displacements_u0.25mm.csv", "grain_displacements_u0.75mm.csv",
                            "force_network_u0.75mm.csv"})
-    for (const char *other : {"stopped", "refilled"})
+    for (const char *other : {"stopped", "refilled", "from_fast"})
       {
         const std::string expected = contents_of(d / "straight" / file);
         EXPECT_GT(expected.size(), 50u) << file;
