@@ -461,6 +461,12 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
       settled = std::make_unique<DemSystem>(state.particles, material, settling_settings);
       add_tank_walls(*settled, t, lid_level, slot_bottom, slot_top);
       settled->restore_state(std::move(state));
+      // The growth ran at the step its grains' starting sizes allowed (a fraction of their final
+      // ones, so a lighter body and a shorter critical step); grown, they allow a longer one.
+      // Without this the settling and the pull-out after the fill ran at 0.61 of the critical
+      // step instead of 0.8 (measured on the 6,000-cluster tank: dt 1.006e-5 s, critical
+      // 1.655e-5 s), 31 % more steps than needed.
+      settled->set_time_step(settling_settings.time_step_safety * settled->critical_time_step());
       settled->request_neighbour_rebuild();
       const std::uint64_t check_every = 200;
       for (;;)
