@@ -14,6 +14,12 @@
 // (written last). In dem mode, also the soil's fields at 'Output/field outputs at'
 // (pullout_field_output.h): pullout_fields.h5/.xdmf, grain_displacements_u*mm.csv/.png,
 // force_network_u*mm.csv/.png, surface_uplift.csv/.png.
+//
+// Long runs (dem mode): checkpoint.h5 holds the whole run (the system, the tank's description, the
+// pull's progress, every row recorded, the field outputs' schedule and reference); it is written
+// when the tank is full (and copied to filled_tank.h5), every 'checkpoint interval' s of wall
+// time and at the end. `geohybrid pullout FILE --resume` continues from it, bit for bit; without
+// one (the run stopped while filling) it fills the tank again and says so.
 #include "pullout_command.h"
 
 #include "contact_parameters.h"
@@ -55,6 +61,13 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "Directory for all results, created if needed, relative to the working directory");
   prm.declare_entry("threads", "2", Patterns::Integer(1, 256),
                     "Number of OpenMP threads; dem mode only (fem mode runs on the MPI ranks of mpirun) [-]");
+  prm.declare_entry("checkpoint interval", "300", Patterns::Double(0.0),
+                    "dem mode: wall-clock time between checkpoints (OUTPUT/checkpoint.h5: the filled tank, the pull, "
+                    "the rows recorded; one is also written when the tank is full); continue an interrupted run "
+                    "with 'geohybrid pullout FILE --resume'; 0 = never [s]");
+  prm.declare_entry("stop after steps", "0", Patterns::Integer(0),
+                    "dem mode: stop the pull after this many time steps of this invocation, writing a checkpoint "
+                    "(to split a long run into jobs, each continued with --resume); 0 = run to the end [-]");
   prm.declare_entry("mode", "dem", Patterns::Selection("dem|fem|hybrid"),
                     "Soil model: dem (discrete elements everywhere, subsections Filling and Soil/Particle contact); "
                     "fem (a deal.II continuum, subsection Continuum); hybrid (DEM near the sheet, continuum "
@@ -264,16 +277,21 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool
 
 namespace
 {
-/// mode = dem: the tank filled with particles, then pulled.
-int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where)
+/// mode = dem: the tank filled with particles, then pulled. With `resume`, the tank and the
+/// pull continue from OUTPUT/checkpoint.h5 (one is written when the tank is full, then every
+/// 'checkpoint interval' s of wall time): the result files are those of a run that never
+/// stopped, bit for bit.
+int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, bool resume)
 {
   if (dealii::Utilities::MPI::job_supports_mpi() && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     throw std::invalid_argument(where + ": 'mode' = dem runs in one process (its threads: 'threads'); run it "
                                 "without mpirun, or use 'set mode = fem'");
   const dem::PullOutGeometry &g = in.tank.geometry;
+  const double checkpoint_interval = prm.get_double("checkpoint interval");
+  const auto stop_after = static_cast<std::uint64_t>(prm.get_integer("stop after steps"));
 
   const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
-  write_resolved_parameters(prm, out);
+  const std::filesystem::path checkpoint_file = out / "checkpoint.h5";
   const auto start_time = std::chrono::steady_clock::now();
   const auto seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
@@ -285,15 +303,60 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
                   : std::string())
             << "; " << in.tank.filling.n_particles << " particles, mode dem" << std::endl;
 
-  // 1. The tank, filled in layers, the sheet laid at its depth.
-  ProgressReport fill_progress("filling the tank", 1.0);
-  dem::PullOutTank tank = dem::fill_pull_out_tank(in.tank, [&](double f) { fill_progress.update(f); });
-  fill_progress.finish();
+  // 1. The tank, filled in layers, the sheet laid at its depth; or the one of the checkpoint.
+  // `saved` holds what a checkpoint keeps beside the system: the tank's description, the
+  // stress before the pull, the wall time spent before, then the pull's progress and rows.
+  dem::CommandState saved;
+  std::optional<dem::PullOutTank> filled;
+  double earlier_wall_time = 0.0; // of the runs before this one, when resuming
+  if (resume && std::filesystem::exists(checkpoint_file))
+    {
+      try
+        {
+          dem::DemSystemState state = dem::read_checkpoint(checkpoint_file, saved);
+          filled.emplace(dem::restore_pullout_tank(std::move(state), dem::tank_settling_settings(in.tank.resolved_filling()),
+                                                   saved));
+        }
+      catch (const std::exception &e)
+        {
+          throw std::runtime_error("cannot resume from '" + checkpoint_file.string() + "' with " + where + ": " + e.what());
+        }
+      earlier_wall_time = saved.real("wall_time_s", 1)[0];
+    }
+  else
+    {
+      if (resume)
+        std::cout << "geohybrid pullout: no checkpoint in " << out.string()
+                  << " (the run stopped before its tank was full): filling the tank again from the start" << std::endl;
+      std::filesystem::remove(checkpoint_file); // never resume a stale one
+    }
+  write_resolved_parameters(prm, out);
+  const bool resumed = filled.has_value();
+  double fill_time = 0.0;
+  dem::SheetLevelStress before;
+  if (resumed)
+    {
+      fill_time = saved.real("fill_wall_time_s", 1)[0];
+      before = dem::restore_sheet_level_stress(saved);
+      std::cout << "pullout: resuming from " << checkpoint_file.string() << " (tank filled in " << number(fill_time, 4)
+                << " s)" << std::endl;
+    }
+  else
+    {
+      ProgressReport fill_progress("filling the tank", 1.0);
+      filled.emplace(dem::fill_pull_out_tank(in.tank, [&](double f) { fill_progress.update(f); }));
+      fill_progress.finish();
+      fill_time = seconds();
+      before = dem::measure_sheet_level_stress(filled->tank.system, *filled, g, in.stress_band);
+      saved = dem::CommandState();
+      dem::store_pullout_tank(*filled, saved);
+      dem::store_sheet_level_stress(before, saved);
+      saved.reals["fill_wall_time_s"] = {fill_time};
+    }
+  dem::PullOutTank &tank = *filled;
   dem::DemSystem &system = tank.tank.system;
-  const double fill_time = seconds();
   const double actual_cover = g.fill_height - tank.sheet_level;
   const double gamma_H = in.tank.unit_weight * actual_cover;
-  const dem::SheetLevelStress before = dem::measure_sheet_level_stress(system, tank, g, in.stress_band);
   const double mu = std::tan(dem::degrees_to_radians(in.tank.sheet.interface.friction_angle_deg));
   const double one_face = before.top_face * g.anchorage_length * mu;
   std::cout << "pullout: tank filled in " << number(fill_time, 4) << " s (" << system.particles().n_bodies()
@@ -305,42 +368,104 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
             << " kPa, Love-Weber above " << number(before.love_weber_above / 1e3, 4) << " kPa, gamma H "
             << number(gamma_H / 1e3, 4) << " kPa" << std::endl;
 
-  // 2. The pull.
-  PulloutOutput output(out, g.sheet_width, in.profiles_at);
+  // 2. The pull, from its start or from the checkpoint's progress.
+  const std::optional<dem::PullProgress> pulled = resumed ? dem::restore_pull_progress(saved) : std::nullopt;
+  std::optional<PulloutOutput> output;
+  if (pulled)
+    output.emplace(out, g.sheet_width, in.profiles_at, saved);
+  else
+    output.emplace(out, g.sheet_width, in.profiles_at);
   const std::size_t middle = (tank.first_node_inside + tank.lower_part_end) / 2;
   const dem::ParticleSet &grains = system.particles();
   // Surface strips two disc diameters wide: a cluster's centre lies between its discs, so strips
   // one disc wide may hold no centre of a surface grain.
-  PullOutFieldOutput fields(out, in.fields_at, g.tank_length,
-                            4.0 * *std::max_element(grains.disc_radius.begin(), grains.disc_radius.end()));
-  ProgressReport progress("pulling", in.pull.final_displacement);
+  const double strip = 4.0 * *std::max_element(grains.disc_radius.begin(), grains.disc_radius.end());
+  std::optional<PullOutFieldOutput> fields;
+  if (pulled)
+    fields.emplace(out, in.fields_at, g.tank_length, strip, saved, system);
+  else
+    fields.emplace(out, in.fields_at, g.tank_length, strip);
+  std::optional<dem::PullOut> pull;
+  if (pulled)
+    pull.emplace(system, in.pull, *pulled);
+  else
+    pull.emplace(system, in.pull);
+  const double u_first = pull->head_displacement();
+  std::cout << "pullout: fill steps per layer (growth + settling)";
+  for (const dem::TankLayer &layer : tank.tank.layers)
+    std::cout << ' ' << layer.n_growth_steps << '+' << layer.n_settling_steps;
+  std::cout << ", settling with the sheet freed " << tank.n_final_settling_steps << "; time step "
+            << number(system.time_step(), 4) << " s (critical " << number(system.critical_time_step(), 4)
+            << " s); the pull takes " << pull->expected_steps() << " steps" << std::endl;
+  ProgressReport progress("pulling", in.pull.final_displacement - u_first);
   const auto record = [&](const dem::PullPoint &p, const dem::DemSystem &s) {
     const dem::SparSheet &sheet = s.sheets()[0];
     const auto moved = [&](std::size_t k) { return sheet.x[k] - tank.initial_nodes[k].x(); };
-    output.add_point(p.head_displacement, p.head_tension,
-                     {{moved(tank.first_node_inside), moved(middle), moved(tank.lower_part_end)}});
-    if (output.profile_due(p.head_displacement))
+    output->add_point(p.head_displacement, p.head_tension,
+                      {{moved(tank.first_node_inside), moved(middle), moved(tank.lower_part_end)}});
+    if (output->profile_due(p.head_displacement))
       {
         std::vector<SheetTensionRow> rows;
         for (std::size_t k = 0; k < sheet.n_segments(); ++k)
           rows.push_back({k, 0.5 * (tank.arc_length[k] + tank.arc_length[k + 1]), 0.5 * (sheet.x[k] + sheet.x[k + 1]),
                           0.5 * (sheet.y[k] + sheet.y[k + 1]), sheet.tension[k]});
-        output.add_profile(p.head_displacement, rows);
+        output->add_profile(p.head_displacement, rows);
       }
-    fields.record(p.head_displacement, s);
-    progress.update(p.head_displacement);
+    fields->record(p.head_displacement, s);
+    progress.update(p.head_displacement - u_first);
   };
-  dem::pull_out(system, in.pull, record);
+  const auto save_checkpoint = [&] {
+    dem::CommandState c = saved;
+    c.reals["wall_time_s"] = {earlier_wall_time + seconds()};
+    dem::store_pull_progress(pull->progress(), c);
+    output->store(c);
+    fields->store(c);
+    dem::write_checkpoint(system.export_state(), c, checkpoint_file);
+  };
+  if (!pulled)
+    {
+      record(pull->start_point(), system);
+      if (checkpoint_interval > 0.0)
+        {
+          save_checkpoint(); // the filled tank: the longest part of a run not to do again
+          // Kept as it is: copied as checkpoint.h5 into the directory of a run of the same input
+          // but for its Pull settings, --resume pulls this tank (bench/run_pullout_rate_check).
+          std::filesystem::copy_file(checkpoint_file, out / "filled_tank.h5",
+                                     std::filesystem::copy_options::overwrite_existing);
+        }
+    }
+  WallClockInterval checkpoint_due(checkpoint_interval);
+  std::uint64_t steps_now = 0;
+  while (!pull->finished())
+    {
+      if (pull->step())
+        record(pull->last_point(), system);
+      ++steps_now;
+      const bool stop = stop_after > 0 && steps_now >= stop_after && !pull->finished();
+      if (checkpoint_due.due() || stop)
+        save_checkpoint();
+      if (stop)
+        {
+          std::cerr << '\n';
+          std::cout << "geohybrid pullout: stopped after " << steps_now << " steps as 'stop after steps' asks, at "
+                    << number(1e3 * pull->head_displacement(), 4) << " mm; continue with --resume (checkpoint "
+                    << checkpoint_file.string() << ")" << std::endl;
+          return 0;
+        }
+    }
+  pull->stop_clamp();
   progress.finish();
-  fields.finish();
+  fields->finish();
 
   // 3. The plot, with the experimental T_max as a horizontal line if given.
-  output.finish("DEM", in.experimental_T_max, in.pull.final_displacement);
-  const double T_max = output.max_head_tension(), u_at_T_max = output.head_displacement_at_max();
+  output->finish("DEM", in.experimental_T_max, in.pull.final_displacement);
+  const double T_max = output->max_head_tension(), u_at_T_max = output->head_displacement_at_max();
+  if (checkpoint_interval > 0.0)
+    save_checkpoint(); // the finished pull: a later --resume has nothing left to do but the files
 
-  const double wall_time = seconds();
+  const double wall_time = earlier_wall_time + seconds();
   Summary summary;
-  output.fill_summary(summary, "dem", anchorage_name(g), in.experimental_T_max);
+  output->fill_summary(summary, "dem", anchorage_name(g), in.experimental_T_max);
   summary.set("n_particles", static_cast<double>(system.particles().n_bodies()));
   summary.set("n_sheet_nodes", static_cast<double>(system.sheets()[0].n_nodes()));
   summary.set("sheet_level_m", tank.sheet_level);
@@ -352,7 +477,16 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   summary.set("sigma_v_over_gamma_H", before.top_face / gamma_H);
   summary.set("one_face_friction_kN_per_m", one_face / 1e3);
   summary.set("time_step_s", system.time_step());
+  summary.set("critical_time_step_s", system.critical_time_step());
+  summary.set("n_pull_steps", static_cast<double>(pull->progress().n_steps));
+  summary.set("resumed_at_head_displacement_m", resumed ? u_first : std::nan("")); // null for a straight run
   summary.set("fill_wall_time_s", fill_time);
+  // The cost of the run in steps: filling (each layer's growth and settling, then the settling
+  // with the sheet freed) and pulling.
+  double fill_steps = static_cast<double>(tank.n_final_settling_steps);
+  for (const dem::TankLayer &layer : tank.tank.layers)
+    fill_steps += static_cast<double>(layer.n_growth_steps + layer.n_settling_steps);
+  summary.set("n_fill_steps", fill_steps);
   summary.set("wall_time_s", wall_time);
   summary.write(out / "summary.json");
   std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m (" << number(T_max * g.sheet_width / 1e3, 4)
@@ -371,8 +505,6 @@ int run_pullout_command(const std::string &input_file, bool resume, const Parame
 int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm communicator,
                         const ParameterOverrides &overrides)
 {
-  if (resume)
-    throw std::invalid_argument("geohybrid pullout: --resume is not supported yet; rerun the input");
   ParameterHandler prm;
   declare_pullout_parameters(prm);
   parse_input_file(prm, input_file);
@@ -383,7 +515,10 @@ int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm com
   if (mode == "hybrid")
     throw std::invalid_argument(where + ": 'mode' = hybrid is not yet available (the coupling is not written); use "
                                 "'set mode = dem' or 'set mode = fem'");
+  if (resume && mode != "dem")
+    throw std::invalid_argument(where + ": --resume continues a run of 'mode' = dem only");
   const PullOutInput in = parse_pullout(prm, where, mode == "dem");
-  return mode == "dem" ? run_pullout_dem_mode(prm, in, where) : run_pullout_fem_mode(prm, in, where, communicator);
+  return mode == "dem" ? run_pullout_dem_mode(prm, in, where, resume)
+                       : run_pullout_fem_mode(prm, in, where, communicator);
 }
 } // namespace geohybrid::apps

@@ -38,18 +38,80 @@ PullOutFieldOutput::PullOutFieldOutput(const std::filesystem::path &directory, s
   std::sort(at_.begin(), at_.end());
 }
 
+PullOutFieldOutput::PullOutFieldOutput(const std::filesystem::path &directory, std::vector<double> at, double width,
+                                       double strip, const dem::CommandState &saved, const dem::DemSystem &system)
+  : directory_(directory), at_(std::move(at)), width_(width), strip_(strip),
+    // Half a step of slack: times are compared as written.
+    snapshots_(dem::SnapshotWriter::resume(directory, "pullout_fields", system.time() + 0.5 * system.time_step()))
+{
+  std::sort(at_.begin(), at_.end());
+  next_ = static_cast<std::size_t>(saved.count("fields_written", 1)[0]);
+  if (next_ > at_.size())
+    throw std::runtime_error("checkpoint of 'pullout': more field outputs written than 'Output/field outputs at' asks");
+  if (saved.counts.count("fields_started") && saved.count("fields_started", 1)[0] != 0)
+    {
+      // Only the positions are read from the start (grain_displacements, surface_uplift); the
+      // bodies and their sizes are those of the system now.
+      dem::ParticleSet start = system.particles();
+      const std::size_t nb = start.n_bodies(), nd = start.n_discs_total();
+      const std::vector<double> &x = saved.real("fields_start_x", nb), &y = saved.real("fields_start_y", nb);
+      const std::vector<double> &dx = saved.real("fields_start_disc_x", nd), &dy = saved.real("fields_start_disc_y", nd);
+      std::copy(x.begin(), x.end(), start.x.begin());
+      std::copy(y.begin(), y.end(), start.y.begin());
+      std::copy(dx.begin(), dx.end(), start.disc_x.begin());
+      std::copy(dy.begin(), dy.end(), start.disc_y.begin());
+      start_ = std::move(start);
+      find_surface();
+    }
+  const std::vector<double> &uplift = saved.real("fields_uplift");
+  const std::size_t n_surface = surface_x_.size();
+  if (uplift.size() != next_ * n_surface)
+    throw std::runtime_error("checkpoint of 'pullout': the stored uplift profiles do not fit the surface");
+  for (std::size_t k = 0; k < next_; ++k)
+    {
+      uplift_.emplace_back(uplift.begin() + k * n_surface, uplift.begin() + (k + 1) * n_surface);
+      uplift_tags_.push_back(millimetres(at_[k]));
+    }
+}
+
+void PullOutFieldOutput::store(dem::CommandState &command) const
+{
+  command.counts["fields_written"] = {next_};
+  command.counts["fields_started"] = {start_ ? 1u : 0u};
+  if (start_)
+    {
+      const dem::ParticleSet &p = *start_;
+      command.reals["fields_start_x"].assign(p.x.begin(), p.x.end());
+      command.reals["fields_start_y"].assign(p.y.begin(), p.y.end());
+      command.reals["fields_start_disc_x"].assign(p.disc_x.begin(), p.disc_x.end());
+      command.reals["fields_start_disc_y"].assign(p.disc_y.begin(), p.disc_y.end());
+    }
+  std::vector<double> &uplift = command.reals["fields_uplift"];
+  uplift.clear();
+  for (const std::vector<double> &u : uplift_)
+    uplift.insert(uplift.end(), u.begin(), u.end());
+}
+
+void PullOutFieldOutput::find_surface()
+{
+  surface_id_.clear();
+  surface_x_.clear();
+  surface_y_.clear();
+  for (const dem::SurfacePoint &s : dem::surface_uplift(*start_, *start_, width_, strip_))
+    {
+      surface_id_.push_back(s.body_id);
+      surface_x_.push_back(s.x0);
+      surface_y_.push_back(s.top0);
+    }
+}
+
 void PullOutFieldOutput::record(double head_displacement, const dem::DemSystem &system)
 {
   if (!start_)
     {
       start_ = system.particles();
       snapshots_.write(system);
-      for (const dem::SurfacePoint &s : dem::surface_uplift(*start_, *start_, width_, strip_))
-        {
-          surface_id_.push_back(s.body_id);
-          surface_x_.push_back(s.x0);
-          surface_y_.push_back(s.top0);
-        }
+      find_surface();
     }
   while (next_ < at_.size() && head_displacement >= at_[next_] - 1e-12)
     {

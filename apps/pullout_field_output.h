@@ -17,6 +17,7 @@
 //                                          (Figure 11), written by finish()
 //
 // D is the chosen head displacement in mm.
+#include "dem/checkpoint.h"
 #include "dem/dem_system.h"
 #include "dem/snapshot_writer.h"
 
@@ -34,6 +35,13 @@ public:
   /// `at`: head displacements [m], ascending; `width`: the tank's inner length; `strip`: the
   /// width of the surface strips [m].
   PullOutFieldOutput(const std::filesystem::path &directory, std::vector<double> at, double width, double strip);
+  /// A resumed run: the grains' positions at the start of the pull, the fields written and the
+  /// uplift profiles from `saved` (store()); `system` is the restored one (the same bodies).
+  /// pullout_fields.h5 keeps its snapshots up to the system's time and is continued.
+  PullOutFieldOutput(const std::filesystem::path &directory, std::vector<double> at, double width, double strip,
+                     const dem::CommandState &saved, const dem::DemSystem &system);
+  /// Keeps what a resumed run needs in `command` (for a checkpoint).
+  void store(dem::CommandState &command) const;
   /// Call at every recorded point of the pull, the start (0) first: writes the fields of each
   /// chosen displacement once the pull has reached it.
   void record(double head_displacement, const dem::DemSystem &system);
@@ -41,6 +49,7 @@ public:
   void finish();
 
 private:
+  void find_surface();
   void write_fields(const std::string &tag, const dem::DemSystem &system);
 
   std::filesystem::path directory_;

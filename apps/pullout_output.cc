@@ -30,16 +30,53 @@ PulloutOutput::PulloutOutput(const std::filesystem::path &directory, double shee
       throw std::runtime_error("cannot write the results in " + directory.string());
 }
 
+PulloutOutput::PulloutOutput(const std::filesystem::path &directory, double sheet_width, std::vector<double> profiles_at,
+                             const dem::CommandState &saved)
+  : PulloutOutput(directory, sheet_width, std::move(profiles_at))
+{
+  const std::vector<double> &points = saved.real("curve_points");
+  const std::vector<double> &profiles = saved.real("profile_rows");
+  if (points.size() % 5 != 0 || profiles.size() % 6 != 0)
+    throw std::runtime_error("checkpoint of 'pullout': the stored curve rows are incomplete");
+  for (std::size_t k = 0; k < points.size(); k += 5)
+    add_point(points[k], points[k + 1], {{points[k + 2], points[k + 3], points[k + 4]}});
+  for (std::size_t k = 0; k < profiles.size(); k += 6)
+    write_profile_row(&profiles[k]);
+  profile_rows_ = profiles;
+  next_profile_ = static_cast<std::size_t>(saved.count("next_profile", 1)[0]);
+}
+
+void PulloutOutput::store(dem::CommandState &command) const
+{
+  command.reals["curve_points"] = points_;
+  command.reals["profile_rows"] = profile_rows_;
+  command.counts["next_profile"] = {next_profile_};
+}
+
 void PulloutOutput::add_point(double u, double T, const std::array<double, 3> &moved)
 {
+  const double row[5] = {u, T, moved[0], moved[1], moved[2]};
+  points_.insert(points_.end(), row, row + 5);
+  write_point(row);
+}
+
+void PulloutOutput::write_point(const double *row)
+{
+  const double u = row[0], T = row[1];
   curve_ << u << ',' << T / 1e3 << '\n';
   per_sheet_ << u << ',' << T * sheet_width_ / 1e3 << '\n';
-  displacements_ << u << ',' << moved[0] << ',' << moved[1] << ',' << moved[2] << '\n';
+  displacements_ << u << ',' << row[2] << ',' << row[3] << ',' << row[4] << '\n';
   if (T > T_max_)
     {
       T_max_ = T;
       u_at_T_max_ = u;
     }
+}
+
+void PulloutOutput::write_profile_row(const double *r)
+{
+  profiles_ << r[0] << ',' << static_cast<std::size_t>(r[1]) << ',' << r[2] << ',' << r[3] << ',' << r[4] << ','
+            << r[5] / 1e3 << '\n';
 }
 
 bool PulloutOutput::profile_due(double u) const
@@ -51,8 +88,11 @@ void PulloutOutput::add_profile(double u, const std::vector<SheetTensionRow> &ro
 {
   for (; profile_due(u); ++next_profile_)
     for (const SheetTensionRow &r : rows)
-      profiles_ << u << ',' << r.segment << ',' << r.arc_length << ',' << r.x << ',' << r.y << ',' << r.tension / 1e3
-                << '\n';
+      {
+        const double row[6] = {u, static_cast<double>(r.segment), r.arc_length, r.x, r.y, r.tension};
+        profile_rows_.insert(profile_rows_.end(), row, row + 6);
+        write_profile_row(row);
+      }
 }
 
 void PulloutOutput::finish(const std::string &label, const std::optional<double> &experimental_T_max,

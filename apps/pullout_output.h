@@ -11,6 +11,8 @@
 // rank (the caller chooses, rank 0) owns a PulloutOutput.
 #include "apps/run_directory.h"
 
+#include "dem/checkpoint.h"
+
 #include <array>
 #include <filesystem>
 #include <fstream>
@@ -34,6 +36,14 @@ public:
   /// Creates the CSV files in `directory` with their headers. `profiles_at` are the head
   /// displacements at which a tension profile is written [m]; `sheet_width` is b [m].
   PulloutOutput(const std::filesystem::path &directory, double sheet_width, std::vector<double> profiles_at);
+  /// A resumed run: the files are written again with the rows `saved` holds (store()), as the
+  /// run that stored them had written them, and the rows an interrupted run wrote after them
+  /// are dropped. Throws std::runtime_error if `saved` lacks them.
+  PulloutOutput(const std::filesystem::path &directory, double sheet_width, std::vector<double> profiles_at,
+                const dem::CommandState &saved);
+
+  /// Keeps the rows written so far in `command` (for a checkpoint).
+  void store(dem::CommandState &command) const;
 
   /// One point of the curve: head displacement [m], head tension [N/m], and the displacements
   /// along the pull of the sheet's beginning (first node inside the tank), the middle and the end
@@ -58,11 +68,17 @@ public:
                     const std::optional<double> &experimental_T_max) const;
 
 private:
+  void write_point(const double *row);
+  void write_profile_row(const double *row);
+
   std::filesystem::path directory_;
   double sheet_width_;
   std::vector<double> profiles_at_;
   std::size_t next_profile_ = 0;
   std::ofstream curve_, per_sheet_, displacements_, profiles_;
   double T_max_ = 0.0, u_at_T_max_ = 0.0;
+  // Every row written, as numbers, so that a checkpoint can hold them: 5 per point (u, T, the
+  // three sheet displacements), 6 per profile row (u, segment, arc length, x, y, tension).
+  std::vector<double> points_, profile_rows_;
 };
 } // namespace geohybrid::apps

@@ -802,9 +802,76 @@ DemSystemState get_everything(hid_t file, std::uint32_t version, const std::stri
   check_consistency(s, where);
   return s;
 }
-} // namespace
 
-void write_checkpoint(const DemSystemState &state, const std::filesystem::path &file)
+std::string joined_keys(const std::vector<std::string> &keys)
+{
+  std::string text;
+  for (const std::string &k : keys)
+    text += k + "\n";
+  return text;
+}
+
+std::vector<std::string> split_keys(const std::string &text)
+{
+  std::vector<std::string> keys;
+  std::size_t start = 0;
+  for (std::size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1)
+    keys.push_back(text.substr(start, end - start));
+  return keys;
+}
+
+void put_command(hid_t file, const CommandState &c, const std::string &where)
+{
+  Handle g = hdf5::create_group(file, "command", where);
+  hdf5::write_string_attribute(g.get(), "name", c.name, where);
+  std::vector<std::string> real_keys, count_keys;
+  {
+    Handle reals = hdf5::create_group(g.get(), "reals", where);
+    for (const auto &[key, values] : c.reals)
+      {
+        put(reals.get(), key.c_str(), values, where);
+        real_keys.push_back(key);
+      }
+  }
+  {
+    Handle counts = hdf5::create_group(g.get(), "counts", where);
+    for (const auto &[key, values] : c.counts)
+      {
+        put(counts.get(), key.c_str(), values, where);
+        count_keys.push_back(key);
+      }
+  }
+  hdf5::write_string_attribute(g.get(), "real_keys", joined_keys(real_keys), where);
+  hdf5::write_string_attribute(g.get(), "count_keys", joined_keys(count_keys), where);
+}
+
+CommandState get_command(hid_t file, const std::string &where)
+{
+  CommandState c;
+  if (H5Lexists(file, "command", H5P_DEFAULT) <= 0)
+    return c;
+  Handle g = hdf5::open_group(file, "command", where);
+  c.name = hdf5::read_string_attribute(g.get(), "name", where);
+  {
+    Handle reals = hdf5::open_group(g.get(), "reals", where);
+    for (const std::string &key : split_keys(hdf5::read_string_attribute(g.get(), "real_keys", where)))
+      {
+        const SoaVector<double> v = get<double>(reals.get(), key.c_str(), where);
+        c.reals[key].assign(v.begin(), v.end());
+      }
+  }
+  {
+    Handle counts = hdf5::open_group(g.get(), "counts", where);
+    for (const std::string &key : split_keys(hdf5::read_string_attribute(g.get(), "count_keys", where)))
+      {
+        const SoaVector<std::uint64_t> v = get<std::uint64_t>(counts.get(), key.c_str(), where);
+        c.counts[key].assign(v.begin(), v.end());
+      }
+  }
+  return c;
+}
+
+void write_checkpoint_file(const DemSystemState &state, const CommandState *command, const std::filesystem::path &file)
 {
   const std::string where = describe(file);
   std::filesystem::path temporary = file;
@@ -817,6 +884,8 @@ void write_checkpoint(const DemSystemState &state, const std::filesystem::path &
         Handle h5(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose, where,
                   "creating '" + temporary.string() + "'");
         put_everything(h5.get(), state, where);
+        if (command)
+          put_command(h5.get(), *command, where);
         h5.close(where, "closing '" + temporary.string() + "'");
       }
       sync_to_disk(temporary, true, where);
@@ -836,7 +905,7 @@ void write_checkpoint(const DemSystemState &state, const std::filesystem::path &
   sync_to_disk(directory.empty() ? std::filesystem::path(".") : directory, false, where);
 }
 
-DemSystemState read_checkpoint(const std::filesystem::path &file)
+DemSystemState read_checkpoint_file(const std::filesystem::path &file, CommandState *command)
 {
   const std::string where = describe(file);
   std::error_code error;
@@ -860,7 +929,53 @@ DemSystemState read_checkpoint(const std::filesystem::path &file)
     fail(where, "has checkpoint format version " + std::to_string(version) + "; this program reads versions 1 to " +
                   std::to_string(checkpoint_format_version));
   DemSystemState state = get_everything(h5.get(), version, where);
+  if (command)
+    *command = get_command(h5.get(), where);
   h5.close(where, "closing the file");
   return state;
+}
+} // namespace
+
+void write_checkpoint(const DemSystemState &state, const std::filesystem::path &file)
+{
+  write_checkpoint_file(state, nullptr, file);
+}
+
+void write_checkpoint(const DemSystemState &state, const CommandState &command, const std::filesystem::path &file)
+{
+  write_checkpoint_file(state, &command, file);
+}
+
+DemSystemState read_checkpoint(const std::filesystem::path &file) { return read_checkpoint_file(file, nullptr); }
+
+DemSystemState read_checkpoint(const std::filesystem::path &file, CommandState &command)
+{
+  return read_checkpoint_file(file, &command);
+}
+
+namespace
+{
+template <typename T>
+const std::vector<T> &find_array(const std::map<std::string, std::vector<T>> &arrays, const std::string &name,
+                                 const std::string &key, std::size_t size)
+{
+  const auto found = arrays.find(key);
+  if (found == arrays.end())
+    throw std::runtime_error("checkpoint of '" + name + "': no array '" + key + "'");
+  if (size > 0 && found->second.size() != size)
+    throw std::runtime_error("checkpoint of '" + name + "': array '" + key + "' holds " +
+                             std::to_string(found->second.size()) + " values, expected " + std::to_string(size));
+  return found->second;
+}
+} // namespace
+
+const std::vector<double> &CommandState::real(const std::string &key, std::size_t size) const
+{
+  return find_array(reals, name, key, size);
+}
+
+const std::vector<std::uint64_t> &CommandState::count(const std::string &key, std::size_t size) const
+{
+  return find_array(counts, name, key, size);
 }
 } // namespace geohybrid::dem

@@ -39,24 +39,50 @@
 //                     friction_work, viscous_work, node_x_at_rebuild, node_y_at_rebuild;
 //                     wall_contacts/ attribute count, wall_NNNNNN: node (uint32), the ContactState
 //                     fields, force_x, force_y, elastic_normal_force, friction_work, viscous_work
+//   /command          (optional, any version) what a command keeps beside the DEM state to go on
+//                     with its own work (CommandState): attribute name; datasets reals/<key>
+//                     (double) and counts/<key> (uint64); attributes real_keys, count_keys (the
+//                     keys, one a line)
 #include "dem_system.h"
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
 
 namespace geohybrid::dem
 {
 /// Version of the layout above; read_checkpoint() reads it and the earlier ones, refuses others.
 constexpr std::uint32_t checkpoint_format_version = 2;
 
+/// What a command stores with the DEM state to continue its own work exactly: a pull-out's
+/// loop and the rows it has recorded, the description of its filled tank. Named arrays of
+/// doubles and counts (round-tripped exactly); `name` says which command wrote them.
+struct CommandState
+{
+  std::string name;
+  std::map<std::string, std::vector<double>> reals;
+  std::map<std::string, std::vector<std::uint64_t>> counts;
+
+  /// The array under `key`; throws std::runtime_error naming the key if there is none or if it
+  /// does not hold `size` values (size 0: any).
+  const std::vector<double> &real(const std::string &key, std::size_t size = 0) const;
+  const std::vector<std::uint64_t> &count(const std::string &key, std::size_t size = 0) const;
+};
+
 /// Writes `state` to `file` through FILE.tmp in the same directory: the temporary file is
 /// written, flushed to the disk (fsync) and renamed over `file`, so a crash at any moment leaves
 /// either the previous checkpoint or the new one, never a partial file. Throws
 /// std::runtime_error naming the file on failure (the previous checkpoint is then untouched).
 void write_checkpoint(const DemSystemState &state, const std::filesystem::path &file);
+/// The same with a command's state in /command.
+void write_checkpoint(const DemSystemState &state, const CommandState &command, const std::filesystem::path &file);
 
 /// Reads a checkpoint written by write_checkpoint(). Throws std::runtime_error naming the file if
 /// it is missing, not a DEM checkpoint, of another format version, damaged, or inconsistent
 /// (array lengths or indices that do not fit together).
 DemSystemState read_checkpoint(const std::filesystem::path &file);
+/// The same, and the command's state into `command` (its name empty if the file has none).
+DemSystemState read_checkpoint(const std::filesystem::path &file, CommandState &command);
 } // namespace geohybrid::dem

@@ -163,6 +163,7 @@ PullOutTank fill_pull_out_tank(const PullOutTankSpec &spec, const std::function<
   for (std::uint64_t n = 1;; ++n)
     {
       system.step();
+      out.n_final_settling_steps = n;
       if (n % check_every != 0)
         continue;
       const double unbalanced = unbalanced_force_ratio(system);
@@ -294,8 +295,9 @@ DemSystem with_threads(const DemSystem &system, int n_threads)
   return copy;
 }
 
-std::vector<PullPoint> pull_out(DemSystem &system, const PullSpec &spec,
-                                const std::function<void(const PullPoint &, const DemSystem &)> &record)
+namespace
+{
+void check_pull_spec(const PullSpec &spec)
 {
   if (!positive(spec.rate))
     throw std::invalid_argument("pull-out: 'Pull/rate' = " + std::to_string(spec.rate) + " must be positive [m/s]");
@@ -308,50 +310,218 @@ std::vector<PullPoint> pull_out(DemSystem &system, const PullSpec &spec,
   if (!(spec.ramp_displacement >= 0.0 && spec.ramp_displacement < spec.final_displacement))
     throw std::invalid_argument("pull-out: 'Pull/ramp displacement' = " + std::to_string(spec.ramp_displacement) +
                                 " must lie in [0, final displacement) [m]");
-  SparSheet &sheet = system.sheets().at(0);
-  const double x0 = sheet.x[0], t0 = system.time();
+}
+} // namespace
+
+PullOut::PullOut(DemSystem &system, const PullSpec &spec) : system_(system), spec_(spec)
+{
+  check_pull_spec(spec);
   // Constant acceleration over the ramp: it covers ramp_displacement in 2 ramp_displacement / rate.
-  const double ramp_time = 2.0 * spec.ramp_displacement / spec.rate;
-  const auto clamp_speed = [&] {
-    const double t = system.time() - t0 + 0.5 * system.time_step(); // at the middle of the next step
-    return ramp_time > 0.0 && t < ramp_time ? spec.rate * t / ramp_time : spec.rate;
-  };
+  ramp_time_ = 2.0 * spec.ramp_displacement / spec.rate;
+  SparSheet &sheet = system.sheets().at(0);
+  progress_.clamp_x0 = sheet.x[0];
+  progress_.time0 = system.time();
+  progress_.next_record = spec.record_interval;
   sheet.prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
   system.set_sheet_local_damping(spec.sheet_local_damping);
-  std::vector<PullPoint> points;
-  PullPoint start;
   system.initialise_forces();
-  start.head_tension = head_tension(system);
-  points.push_back(start);
-  if (record)
-    record(start, system);
-  double sum = 0.0;
-  std::uint64_t n_summed = 0;
-  double next_record = spec.record_interval;
-  const double end = spec.final_displacement;
-  for (;;)
+  last_point_.head_tension = head_tension(system);
+}
+
+PullOut::PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &progress)
+  : system_(system), spec_(spec), progress_(progress)
+{
+  check_pull_spec(spec);
+  ramp_time_ = 2.0 * spec.ramp_displacement / spec.rate;
+  // The sheet's damping is a setting of the system, not of its state. The clamp's velocity is
+  // in the state, and is what clamp_speed() gives for the same spec (each step prescribes it
+  // for the next): prescribed again, it changes nothing when resuming the same pull, and it
+  // makes a pull of the same filled tank at another rate start at its own speed.
+  system.set_sheet_local_damping(spec.sheet_local_damping);
+  if (!progress.finished)
+    system.sheets().at(0).prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
+  last_point_.head_displacement = head_displacement();
+  last_point_.head_tension = head_tension(system);
+}
+
+void PullOut::stop_clamp() { system_.sheets()[0].prescribe_velocity(0, Vec2::Zero()); }
+
+PullPoint PullOut::start_point() const
+{
+  PullPoint p;
+  p.head_tension = head_tension(system_);
+  return p;
+}
+
+double PullOut::clamp_speed() const
+{
+  const double t = system_.time() - progress_.time0 + 0.5 * system_.time_step(); // at the middle of the next step
+  return ramp_time_ > 0.0 && t < ramp_time_ ? spec_.rate * t / ramp_time_ : spec_.rate;
+}
+
+double PullOut::head_displacement() const { return system_.sheets()[0].x[0] - progress_.clamp_x0; }
+
+std::uint64_t PullOut::expected_steps() const
+{
+  const double distance = spec_.final_displacement + spec_.ramp_displacement; // the ramp takes twice its length in time
+  return static_cast<std::uint64_t>(std::ceil(distance / spec_.rate / system_.time_step()));
+}
+
+bool PullOut::step()
+{
+  if (progress_.finished)
+    return false;
+  system_.step();
+  SparSheet &sheet = system_.sheets()[0];
+  sheet.prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
+  progress_.tension_sum += head_tension(system_);
+  ++progress_.n_summed;
+  ++progress_.n_steps;
+  const double u = sheet.x[0] - progress_.clamp_x0, end = spec_.final_displacement;
+  if (!(u >= progress_.next_record - 1e-12 * end || u >= end - 1e-12 * end))
+    return false;
+  last_point_.head_displacement = u;
+  last_point_.head_tension = progress_.tension_sum / static_cast<double>(progress_.n_summed);
+  progress_.tension_sum = 0.0;
+  progress_.n_summed = 0;
+  progress_.next_record += spec_.record_interval;
+  progress_.finished = u >= end - 1e-12 * end;
+  return true;
+}
+
+namespace
+{
+constexpr const char *command_name = "pullout";
+constexpr std::size_t layer_fields = 10;
+
+void check_command(const CommandState &c)
+{
+  if (c.name != command_name)
+    throw std::runtime_error("the checkpoint is not a pull-out's (" +
+                             (c.name.empty() ? std::string("no command state") : "written by '" + c.name + "'") + ")");
+}
+} // namespace
+
+void store_pullout_tank(const PullOutTank &tank, CommandState &c)
+{
+  c.name = command_name;
+  const FilledTank &f = tank.tank;
+  c.counts["tank_walls"] = {f.walls.base, f.walls.right, f.walls.lid, f.walls.left, f.walls.right_upper};
+  c.reals["slot"] = {f.slot_bottom, f.slot_top};
+  std::vector<double> layers;
+  for (const TankLayer &l : f.layers)
+    layers.insert(layers.end(), {l.bottom, l.top, static_cast<double>(l.first_body), static_cast<double>(l.n_bodies),
+                                 l.target_porosity, l.porosity_grown, l.porosity, l.growth_friction_deg,
+                                 static_cast<double>(l.n_growth_steps), static_cast<double>(l.n_settling_steps)});
+  c.reals["layers"] = layers;
+  c.reals["sheet_level"] = {tank.sheet_level};
+  c.counts["sheet_nodes"] = {tank.lower_part_end, tank.first_node_inside};
+  c.counts["final_settling_steps"] = {tank.n_final_settling_steps};
+  c.reals["arc_length"] = tank.arc_length;
+  std::vector<double> nodes;
+  for (const Vec2 &v : tank.initial_nodes)
+    nodes.insert(nodes.end(), {v.x(), v.y()});
+  c.reals["initial_nodes"] = nodes;
+}
+
+PullOutTank restore_pullout_tank(DemSystemState state, const DemSettings &settings, const CommandState &c)
+{
+  check_command(c);
+  DemSystem system(state.particles, LinearContactLaw(state.particle_contact), settings);
+  for (const Wall &wall : state.walls)
+    system.add_wall(wall); // replaced by the saved walls: restore_state needs as many
+  system.restore_state(std::move(state));
+  const std::vector<std::uint64_t> &w = c.count("tank_walls", 5);
+  const std::vector<double> &slot = c.real("slot", 2);
+  TankWalls walls{w[0], w[1], w[2], w[3], w[4]};
+  std::vector<TankLayer> layers;
+  const std::vector<double> &l = c.real("layers");
+  if (l.size() % layer_fields != 0)
+    throw std::runtime_error("checkpoint of 'pullout': array 'layers' is not a whole number of layers");
+  for (std::size_t k = 0; k < l.size(); k += layer_fields)
     {
-      system.step();
-      system.sheets()[0].prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
-      sum += head_tension(system);
-      ++n_summed;
-      const double u = system.sheets()[0].x[0] - x0;
-      if (u >= next_record - 1e-12 * end || u >= end - 1e-12 * end)
-        {
-          PullPoint p;
-          p.head_displacement = u;
-          p.head_tension = sum / static_cast<double>(n_summed);
-          points.push_back(p);
-          if (record)
-            record(p, system);
-          sum = 0.0;
-          n_summed = 0;
-          next_record += spec.record_interval;
-          if (u >= end - 1e-12 * end)
-            break;
-        }
+      TankLayer layer;
+      layer.bottom = l[k];
+      layer.top = l[k + 1];
+      layer.first_body = static_cast<std::size_t>(l[k + 2]);
+      layer.n_bodies = static_cast<std::size_t>(l[k + 3]);
+      layer.target_porosity = l[k + 4];
+      layer.porosity_grown = l[k + 5];
+      layer.porosity = l[k + 6];
+      layer.growth_friction_deg = l[k + 7];
+      layer.n_growth_steps = static_cast<std::uint64_t>(l[k + 8]);
+      layer.n_settling_steps = static_cast<std::uint64_t>(l[k + 9]);
+      layers.push_back(layer);
     }
-  system.sheets()[0].prescribe_velocity(0, Vec2::Zero());
+  const std::size_t n_nodes = system.sheets().empty() ? 0 : system.sheets()[0].n_nodes();
+  if (n_nodes == 0)
+    throw std::runtime_error("checkpoint of 'pullout': the saved system has no sheet");
+  PullOutTank tank{FilledTank{std::move(system), walls, std::move(layers), slot[0], slot[1]}, c.real("sheet_level", 1)[0],
+                   0, 0, c.real("arc_length", n_nodes), {}};
+  const std::vector<std::uint64_t> &nodes = c.count("sheet_nodes", 2);
+  tank.lower_part_end = nodes[0];
+  tank.first_node_inside = nodes[1];
+  tank.n_final_settling_steps = c.count("final_settling_steps", 1)[0];
+  const std::vector<double> &initial = c.real("initial_nodes", 2 * n_nodes);
+  for (std::size_t k = 0; k < n_nodes; ++k)
+    tank.initial_nodes.emplace_back(initial[2 * k], initial[2 * k + 1]);
+  if (tank.lower_part_end >= n_nodes || tank.first_node_inside >= n_nodes)
+    throw std::runtime_error("checkpoint of 'pullout': sheet node indices out of range");
+  return tank;
+}
+
+void store_pull_progress(const PullProgress &p, CommandState &c)
+{
+  c.reals["pull"] = {p.clamp_x0, p.time0, p.tension_sum, p.next_record};
+  c.counts["pull"] = {p.n_summed, p.n_steps, p.finished ? 1u : 0u};
+}
+
+std::optional<PullProgress> restore_pull_progress(const CommandState &c)
+{
+  check_command(c);
+  if (c.reals.count("pull") == 0)
+    return std::nullopt;
+  const std::vector<double> &r = c.real("pull", 4);
+  const std::vector<std::uint64_t> &n = c.count("pull", 3);
+  PullProgress p;
+  p.clamp_x0 = r[0];
+  p.time0 = r[1];
+  p.tension_sum = r[2];
+  p.next_record = r[3];
+  p.n_summed = n[0];
+  p.n_steps = n[1];
+  p.finished = n[2] != 0;
+  return p;
+}
+
+void store_sheet_level_stress(const SheetLevelStress &s, CommandState &c)
+{
+  c.reals["sheet_level_stress"] = {s.top_face, s.bottom_face, s.normal_force_both_faces, s.love_weber_above,
+                                   s.lower_part_length};
+}
+
+SheetLevelStress restore_sheet_level_stress(const CommandState &c)
+{
+  check_command(c);
+  const std::vector<double> &r = c.real("sheet_level_stress", 5);
+  return SheetLevelStress{r[0], r[1], r[2], r[3], r[4]};
+}
+
+std::vector<PullPoint> pull_out(DemSystem &system, const PullSpec &spec,
+                                const std::function<void(const PullPoint &, const DemSystem &)> &record)
+{
+  PullOut pull(system, spec);
+  std::vector<PullPoint> points{pull.start_point()};
+  if (record)
+    record(points.back(), system);
+  while (!pull.finished())
+    if (pull.step())
+      {
+        points.push_back(pull.last_point());
+        if (record)
+          record(points.back(), system);
+      }
+  pull.stop_clamp();
   return points;
 }
 } // namespace geohybrid::dem

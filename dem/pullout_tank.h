@@ -27,10 +27,13 @@
 // above. The sheet therefore lies on the grains of the last lift below it, a little above the
 // nominal level (about one grain); its actual depth is reported. Walls have the wall friction
 // (28 degrees in the paper, measured) and the soil's stiffness.
+#include "checkpoint.h"
 #include "tank_filling.h"
 
 #include <array>
+#include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -100,6 +103,7 @@ struct PullOutTank
   std::size_t first_node_inside = 0; ///< first node inside the front wall
   std::vector<double> arc_length;    ///< of each node from the clamp, as laid [m]
   std::vector<Vec2> initial_nodes;   ///< node positions before the pull [m]
+  std::uint64_t n_final_settling_steps = 0; ///< steps of the settling with the sheet freed, after the layers
 };
 
 /// Fills the tank in layers, laying the sheet at its depth, then frees the sheet (but the clamp)
@@ -176,6 +180,69 @@ struct PullPoint
   double head_displacement = 0.0;   ///< [m]
   double head_tension = 0.0;        ///< mean clamp reaction along the pull [N/m]
 };
+
+/// What the pull carries from one step to the next, plain data: with the DemSystemState, all a
+/// checkpoint needs to continue a pull bit for bit.
+struct PullProgress
+{
+  double clamp_x0 = 0.0;            ///< x of the clamp at the start of the pull [m]
+  double time0 = 0.0;               ///< the system's time at the start of the pull [s]
+  double tension_sum = 0.0;         ///< sum of the head tensions of the steps since the last record [N/m]
+  std::uint64_t n_summed = 0;       ///< steps in tension_sum
+  double next_record = 0.0;         ///< head displacement of the next recorded point [m]
+  std::uint64_t n_steps = 0;        ///< pull steps done
+  bool finished = false;
+};
+
+/// The pull, one step at a time: the clamp (node 0 of sheet 0) moves along +x at spec.rate, the
+/// grains keep the system's local damping, the sheet's nodes have spec.sheet_local_damping.
+/// Each recorded point is the mean head tension over the steps since the last one.
+class PullOut
+{
+public:
+  /// Starts a pull: throws std::invalid_argument for a non-positive rate, displacement or
+  /// interval, or a ramp outside [0, final displacement).
+  PullOut(DemSystem &system, const PullSpec &spec);
+  /// Continues a pull from `progress` (of a system restored from the same checkpoint).
+  PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &progress);
+
+  /// The point at the start (displacement 0, the tension of the filled tank).
+  PullPoint start_point() const;
+  /// One time step; true when it reached a record point, then given by last_point().
+  bool step();
+  const PullPoint &last_point() const { return last_point_; }
+  bool finished() const { return progress_.finished; }
+  /// Holds the clamp still (after the last step).
+  void stop_clamp();
+  const PullProgress &progress() const { return progress_; }
+  /// Head displacement now [m].
+  double head_displacement() const;
+  /// Steps the whole pull takes, the ramp included (from the rate and the time step).
+  std::uint64_t expected_steps() const;
+
+private:
+  double clamp_speed() const;
+
+  DemSystem &system_;
+  PullSpec spec_;
+  PullProgress progress_;
+  double ramp_time_ = 0.0;
+  PullPoint last_point_;
+};
+
+/// Checkpoints of a pull-out: the filled tank's description (PullOutTank but its system), the
+/// pull's progress and the vertical stress measured before the pull, in a CommandState named
+/// "pullout" beside the system's state (checkpoint.h).
+void store_pullout_tank(const PullOutTank &tank, CommandState &command);
+/// The tank of a checkpoint: its system rebuilt from `state` with `settings` (those of the fill,
+/// tank_settling_settings) and its description from `command`. Throws std::runtime_error naming
+/// what is missing if `command` is not a pull-out's.
+PullOutTank restore_pullout_tank(DemSystemState state, const DemSettings &settings, const CommandState &command);
+void store_pull_progress(const PullProgress &progress, CommandState &command);
+/// The progress stored, if the checkpoint was written during the pull (not right after the fill).
+std::optional<PullProgress> restore_pull_progress(const CommandState &command);
+void store_sheet_level_stress(const SheetLevelStress &stress, CommandState &command);
+SheetLevelStress restore_sheet_level_stress(const CommandState &command);
 
 /// Pulls the clamp (node 0 of sheet 0) along +x at spec.rate, with the system's local damping, until spec.final_displacement; after each record
 /// interval calls `record` with the point and the system (for profiles and progress). Throws

@@ -291,6 +291,16 @@ double slab_porosity(const ParticleSet &p, double x_min, double x_max, double y_
   return 1.0 - solid / ((x_max - x_min) * (y_top - y_bottom));
 }
 
+DemSettings tank_settling_settings(const TankFillingSpec &t)
+{
+  DemSettings s;
+  s.gravity = Vec2(0.0, -t.gravity);
+  s.local_damping = t.local_damping;
+  s.n_threads = t.n_threads;
+  s.track_energy = false;
+  return s;
+}
+
 FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<void(double)> &progress)
 {
   check_spec(t);
@@ -333,13 +343,9 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
     return static_cast<std::size_t>(std::llround(static_cast<double>(t.n_particles) * cumulative_space[k] / t.height));
   };
 
-  DemSettings growth_settings;
+  const DemSettings settling_settings = tank_settling_settings(t);
+  DemSettings growth_settings = settling_settings;
   growth_settings.gravity = Vec2::Zero();
-  growth_settings.local_damping = t.local_damping;
-  growth_settings.n_threads = t.n_threads;
-  growth_settings.track_energy = false;
-  DemSettings settling_settings = growth_settings;
-  settling_settings.gravity = Vec2(0.0, -t.gravity);
 
   const LinearContactLaw material(t.particle_contact);
   std::vector<TankLayer> layers;
@@ -455,6 +461,12 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
       settled = std::make_unique<DemSystem>(state.particles, material, settling_settings);
       add_tank_walls(*settled, t, lid_level, slot_bottom, slot_top);
       settled->restore_state(std::move(state));
+      // The growth ran at the step its grains' starting sizes allowed (a fraction of their final
+      // ones, so a lighter body and a shorter critical step); grown, they allow a longer one.
+      // Without this the settling and the pull-out after the fill ran at 0.61 of the critical
+      // step instead of 0.8 (measured on the 6,000-cluster tank: dt 1.006e-5 s, critical
+      // 1.655e-5 s), 31 % more steps than needed.
+      settled->set_time_step(settling_settings.time_step_safety * settled->critical_time_step());
       settled->request_neighbour_rebuild();
       const std::uint64_t check_every = 200;
       for (;;)

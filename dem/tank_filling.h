@@ -130,6 +130,10 @@ struct FilledTank
 /// reach its porosity or the fill does not settle within max_steps_per_layer, naming the layer.
 FilledTank fill_tank_in_layers(const TankFillingSpec &spec, const std::function<void(double)> &progress = {});
 
+/// The settings of the filled tank's system (gravity along -y, the spec's local damping and
+/// threads, the automatic time step): those a system continuing a saved tank must have.
+DemSettings tank_settling_settings(const TankFillingSpec &spec);
+
 /// Porosity of the horizontal slab y in [y_bottom, y_top], x in [x_min, x_max]: one minus the
 /// solid area inside it over its area, each disc cut exactly at the slab's top and bottom (discs
 /// are taken to lie within [x_min, x_max], as between a tank's side walls). The discs of a

@@ -3,6 +3,7 @@
 // taken from a `geohybrid calibrate` fragment, and bad input refused naming the entry.
 #include "apps/pullout_command.h"
 #include "apps/pullout_seeds.h"
+#include "dem/checkpoint.h"
 
 #include <gtest/gtest.h>
 
@@ -295,5 +296,101 @@ TEST(PullOutCommand, WritesTheFieldsAtChosenDisplacements)
       EXPECT_NEAR(point[4], (*grain)[6], 1e-12);
       EXPECT_GT(point[2], 0.08); // the surface of a 0.1 m fill
     }
+  fs::remove_all(d);
+}
+
+namespace
+{
+std::string contents_of(const fs::path &file)
+{
+  std::stringstream s;
+  s << std::ifstream(file, std::ios::binary).rdbuf();
+  return s.str();
+}
+
+/// The tiny tank with its output in `out`, field outputs at 0.25 and 0.75 mm.
+std::string write_resume_input(const fs::path &directory, const std::string &out)
+{
+  const std::string input = write_tiny_input(directory);
+  const fs::path file = directory / (out + ".prm");
+  std::ofstream(file) << contents_of(input) << "set output directory = " << (directory / out).string() << "\n"
+                      << "subsection Output\n  set field outputs at = 0.00025, 0.00075\nend\n";
+  return file.string();
+}
+} // namespace
+
+// A pull stopped twice ('stop after steps', an exact step, not a signal's race) and resumed
+// from its checkpoints writes the same files, bit for bit, as the pull that never stopped, and
+// ends in the same state; a run resumed before its tank was full fills it again and says so.
+TEST(PullOutCommand, ResumesAStoppedPullBitForBit)
+{
+  using geohybrid::apps::run_pullout_command;
+  const fs::path d = test_directory();
+  const std::string straight = write_resume_input(d, "straight"), stopped = write_resume_input(d, "stopped"),
+                    refilled = write_resume_input(d, "refilled");
+  ASSERT_EQ(run_pullout_command(straight, false), 0);
+  // The pull takes 0.125 s of simulated time (1 mm at 10 mm/s, the ramp of 0.25 mm taking
+  // 0.05 s), 5,093 steps of 2.45e-5 s: the first stop is early in the ramp (step 700), the
+  // second (step 3,000) after the field output at 0.25 mm (step 2,037) and before the one at
+  // 0.75 mm (step 4,075).
+  ASSERT_EQ(run_pullout_command(stopped, false, {{"stop after steps", "700"}}), 0);
+  EXPECT_FALSE(fs::exists(d / "stopped" / "summary.json")); // not a finished run
+  ASSERT_TRUE(fs::exists(d / "stopped" / "checkpoint.h5"));
+  ASSERT_EQ(run_pullout_command(stopped, true, {{"stop after steps", "2300"}}), 0);
+  EXPECT_FALSE(fs::exists(d / "stopped" / "summary.json"));
+  ASSERT_EQ(run_pullout_command(stopped, true), 0);
+
+  testing::internal::CaptureStdout();
+  const int status = run_pullout_command(refilled, true);
+  const std::string said = testing::internal::GetCapturedStdout();
+  ASSERT_EQ(status, 0);
+  EXPECT_NE(said.find("filling the tank again from the start"), std::string::npos) << said;
+
+  // The same tank pulled at another rate: a run at 20 mm/s keeps its filled tank, and a run at
+  // the straight run's 10 mm/s resumed from it is the straight run (the rate-halving check
+  // pulls one tank at every rate so).
+  const std::string fast = write_resume_input(d, "fast"), from_fast = write_resume_input(d, "from_fast");
+  ASSERT_EQ(run_pullout_command(fast, false, {{"Pull/rate", "0.02"}}), 0);
+  fs::create_directories(d / "from_fast");
+  fs::copy_file(d / "fast" / "filled_tank.h5", d / "from_fast" / "checkpoint.h5");
+  ASSERT_EQ(run_pullout_command(from_fast, true), 0);
+  EXPECT_TRUE(contents_of(d / "from_fast" / "pullout_curve.csv") == contents_of(d / "straight" / "pullout_curve.csv"));
+  EXPECT_FALSE(contents_of(d / "fast" / "pullout_curve.csv") == contents_of(d / "straight" / "pullout_curve.csv"));
+
+  for (const char *file : {"pullout_curve.csv", "pullout_curve_sheet.csv", "sheet_displacements.csv", "sheet_tension.csv",
+                           "surface_uplift.csv", "grain_displacements_u0.25mm.csv", "grain_displacements_u0.75mm.csv",
+                           "force_network_u0.75mm.csv"})
+    for (const char *other : {"stopped", "refilled", "from_fast"})
+      {
+        const std::string expected = contents_of(d / "straight" / file);
+        EXPECT_GT(expected.size(), 50u) << file;
+        EXPECT_TRUE(contents_of(d / other / file) == expected) << other << '/' << file;
+      }
+  EXPECT_EQ(lines_of(d / "straight" / "pullout_curve.csv").size(), 1u + 5u);
+  // The final states (each run writes a checkpoint at its end): every body, every sheet node.
+  const geohybrid::dem::DemSystemState a = geohybrid::dem::read_checkpoint(d / "straight" / "checkpoint.h5"),
+                                       b = geohybrid::dem::read_checkpoint(d / "stopped" / "checkpoint.h5");
+  EXPECT_EQ(a.step_count, b.step_count);
+  EXPECT_EQ(a.time, b.time);
+  ASSERT_EQ(a.particles.n_bodies(), b.particles.n_bodies());
+  for (std::size_t k = 0; k < a.particles.n_bodies(); ++k)
+    {
+      ASSERT_EQ(a.particles.x[k], b.particles.x[k]) << "body " << k;
+      ASSERT_EQ(a.particles.y[k], b.particles.y[k]) << "body " << k;
+      ASSERT_EQ(a.particles.vx[k], b.particles.vx[k]) << "body " << k;
+      ASSERT_EQ(a.particles.omega[k], b.particles.omega[k]) << "body " << k;
+    }
+  ASSERT_EQ(a.sheets.size(), 1u);
+  ASSERT_EQ(b.sheets.size(), 1u);
+  for (std::size_t k = 0; k < a.sheets[0].n_nodes(); ++k)
+    {
+      ASSERT_EQ(a.sheets[0].x[k], b.sheets[0].x[k]) << "node " << k;
+      ASSERT_EQ(a.sheets[0].vy[k], b.sheets[0].vy[k]) << "node " << k;
+      ASSERT_EQ(a.sheets[0].tension[std::min(k, a.sheets[0].n_segments() - 1)],
+                b.sheets[0].tension[std::min(k, b.sheets[0].n_segments() - 1)]);
+    }
+  ASSERT_EQ(a.pairs.size(), b.pairs.size());
+  for (std::size_t q = 0; q < a.pairs.size(); ++q)
+    ASSERT_EQ(a.pairs.state[q].tangential_force, b.pairs.state[q].tangential_force) << "pair " << q;
   fs::remove_all(d);
 }
