@@ -58,20 +58,33 @@ QuasiStaticPullout::QuasiStaticPullout(const dealii::parallel::distributed::Tria
   for (unsigned int k = 0; k <= n_segments; ++k)
     nodes.emplace_back(x_front_ - p.sheet_length * k / n_segments, y_sheet);
   clamp_node_ = 0;
+  arc_lengths_.assign(1, 0.0);
+  for (std::size_t k = 1; k < nodes.size(); ++k)
+    arc_lengths_.push_back(arc_lengths_.back() + nodes[k].distance(nodes[k - 1]));
+  const double sigma_v = -geostatic_.stress_at(dealii::Point<dim>(x_front_, y_sheet))[1][1];
+  geostatic_limit_ = 2.0 *
+                     (p.sheet.interface.cohesion + sigma_v * std::tan(degrees_to_radians(p.sheet.interface.friction_angle_deg))) *
+                     p.sheet_length;
+  n_cells_ = mesh.n_global_active_cells();
   // The pseudo-time is the head displacement.
   solver_->attach_sheet(TrussSheet(nodes, p.sheet, where + ": sheet"),
                         {{clamp_node_, [](double t) { return dealii::Tensor<1, dim>({t, 0.0}); }}});
 }
 
-PulloutResult QuasiStaticPullout::run()
+PulloutResult QuasiStaticPullout::run(const CurveObserver &observer)
 {
   const PulloutProblemParameters &p = parameters_.pullout;
-  PulloutResult result;
+  result_ = PulloutResult();
+  PulloutResult &result = result_;
   result.tank_length = tank_length_;
   result.tank_height = tank_height_;
   result.vertical_stress_at_sheet = -geostatic_.stress_at(dealii::Point<dim>(x_front_, y_top_ - p.sheet_depth))[1][1];
+  result.geostatic_interface_limit = geostatic_limit_;
+  result.n_cells = n_cells_;
   const auto record = [&]() {
     result.curve.push_back({solver_->sheet_displacements()[clamp_node_][0], solver_->sheet_node_reaction(clamp_node_)[0]});
+    if (observer)
+      observer(result.curve.back());
   };
   const auto write_snapshot = [&]() {
     const std::string name = solver_->write_vtu(p.snapshot_directory, "pullout", result.snapshots.size());
@@ -80,6 +93,8 @@ PulloutResult QuasiStaticPullout::run()
   // The state before the pull: the solver has assembled nothing yet, so the clamp's reaction is
   // that of the unloaded sheet, zero.
   result.curve.push_back({0.0, 0.0});
+  if (observer)
+    observer(result.curve.back());
   const bool snapshots = !p.snapshot_directory.empty();
   if (snapshots)
     write_snapshot();
@@ -94,9 +109,11 @@ PulloutResult QuasiStaticPullout::run()
       const LoadSteppingReport stage = solver_->advance_to(target);
       report_.steps.insert(report_.steps.end(), stage.steps.begin(), stage.steps.end());
       report_.n_cutbacks += stage.n_cutbacks;
+      result.n_steps = report_.steps.size();
       if (std::abs(solver_->time() - next_output) <= tolerance)
         {
           record();
+          result.max_head_tension = std::max(result.max_head_tension, result.curve.back().head_tension);
           next_output = std::min(next_output + p.output_interval, end);
         }
       if (snapshots && std::abs(solver_->time() - next_snapshot) <= tolerance)
@@ -106,9 +123,6 @@ PulloutResult QuasiStaticPullout::run()
         }
       // At the end both targets stay at `end`; the loop condition stops.
     }
-  result.n_steps = report_.steps.size();
-  for (const auto &point : result.curve)
-    result.max_head_tension = std::max(result.max_head_tension, point.head_tension);
   return result;
 }
 } // namespace geohybrid::fem

@@ -14,6 +14,7 @@
 #include "fem/pullout_problem.h"
 #include "fem/quasi_static_solver.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -24,9 +25,18 @@ struct QuasiStaticPulloutParameters
   PulloutProblemParameters pullout;     ///< tank, soil, sheet, final displacement, output interval
   double displacement_increment = 0.5e-3; ///< head displacement per load step, the largest used, > 0 [m]
   double minimum_increment = 1e-6;      ///< a step that fails at this size stops the run, > 0 [m]
-  NewtonSettings newton;
+  /// A relative residual of 1e-6 of the forces (QuasiStaticSolver's measure: max(|f_int|, |f_ext|),
+  /// reactions included) changes the head tension by far less than a curve shows; the solver's
+  /// default of 1e-8 costs one to two more Newton iterations per step at a plastic front.
+  NewtonSettings newton = pullout_newton_settings();
   LinearSolverSettings linear_solver;
 
+  static NewtonSettings pullout_newton_settings()
+  {
+    NewtonSettings settings;
+    settings.relative_tolerance = 1e-6;
+    return settings;
+  }
   /// Throws std::invalid_argument naming `where` and the parameter.
   void validate(const std::string &where) const;
 };
@@ -40,13 +50,25 @@ public:
   QuasiStaticPullout(const dealii::parallel::distributed::Triangulation<dim> &mesh,
                      const QuasiStaticPulloutParameters &parameters, const std::string &where = "implicit pull-out");
 
+  /// Called at every point of the curve (a converged state) with the point; the solver then holds
+  /// that state (sheet_displacements(), sheet()).
+  using CurveObserver = std::function<void(const PulloutCurvePoint &)>;
+
   /// Pulls the clamp to the final displacement, one curve point per output interval. Throws
   /// ConvergenceFailure (with the last converged head displacement) if a step cannot converge.
-  /// Collective; every rank returns the same curve. PulloutResult::time_step and
-  /// sheet_mass_scaling are 0 (no time, no inertia); n_steps counts the converged load steps.
-  PulloutResult run();
+  /// Collective; every rank returns the same curve (and calls `observer` alike).
+  /// PulloutResult::time_step and sheet_mass_scaling are 0 (no time, no inertia); n_steps counts
+  /// the converged load steps.
+  PulloutResult run(const CurveObserver &observer = {});
 
-  /// Newton iterations, Krylov iterations and residuals of every load step of run().
+  /// Distance of each sheet node from the clamp (node 0) along the sheet, as laid [m].
+  const std::vector<double> &arc_lengths() const { return arc_lengths_; }
+
+  /// The curve so far: all of it after run() returns; after a ConvergenceFailure, up to the last
+  /// converged output point (the run-out's "as far as it goes").
+  const PulloutResult &result() const { return result_; }
+  /// Newton iterations, Krylov iterations and residuals of every load step of run() (after a
+  /// ConvergenceFailure, without the output interval that failed).
   const LoadSteppingReport &report() const { return report_; }
   const QuasiStaticSolver &solver() const { return *solver_; }
   QuasiStaticSolver &solver() { return *solver_; } ///< e.g. for its material points
@@ -57,6 +79,10 @@ private:
   GeostaticStress geostatic_;
   std::unique_ptr<QuasiStaticSolver> solver_;
   std::size_t clamp_node_ = 0;
+  std::vector<double> arc_lengths_;
+  double geostatic_limit_ = 0.0;
+  unsigned int n_cells_ = 0;
   LoadSteppingReport report_;
+  PulloutResult result_;
 };
 } // namespace geohybrid::fem

@@ -14,6 +14,7 @@
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -103,7 +104,7 @@ void QuasiStaticSolver::setup_system()
   dealii::SparsityTools::distribute_sparsity_pattern(pattern, owned_dofs_, comm, relevant_dofs_);
   tangent_.reinit(owned_dofs_, owned_dofs_, pattern, comm);
   for (auto *v : {&newton_rhs_, &residual_, &internal_force_, &external_force_, &correction_, &increment_,
-                  &displacement_owned_})
+                  &last_increment_, &line_search_base_, &displacement_owned_})
     v->reinit(owned_dofs_, comm);
   increment_relevant_.reinit(owned_dofs_, relevant_dofs_, comm);
   displacement_.reinit(owned_dofs_, relevant_dofs_, comm);
@@ -312,12 +313,26 @@ QuasiStaticSolver::NewtonOutcome QuasiStaticSolver::solve_step(double new_time)
   const bool moves_boundary =
     dealii::Utilities::MPI::max(largest_prescribed_increment, space_.communicator()) > 0.0;
 
+  // The predictor: the last step's increment scaled to this one, with the prescribed DoFs set to
+  // their values (the constraints' distribute); then every iteration is a homogeneous correction.
+  // Without it the first iteration carries the prescribed increment (inhomogeneous constraints).
+  const bool extrapolated = settings_.newton.extrapolate_predictor && last_step_ > 0.0;
   increment_ = 0.0;
+  if (extrapolated)
+    {
+      increment_.add((new_time - time_) / last_step_, last_increment_);
+      first_constraints.distribute(increment_);
+    }
+  const double tolerance_factor = settings_.newton.relative_tolerance;
+  const auto converged = [&](double residual, double reference) {
+    return residual <= tolerance_factor * reference + settings_.newton.absolute_tolerance;
+  };
+  increment_relevant_ = increment_;
+  const auto &first_iteration_constraints = extrapolated ? homogeneous_constraints_ : first_constraints;
+  assemble(new_time, first_iteration_constraints);
   for (unsigned int iteration = 0;; ++iteration)
     {
-      increment_relevant_ = increment_;
-      const auto &constraints = iteration == 0 ? first_constraints : homogeneous_constraints_;
-      assemble(new_time, constraints);
+      const auto &constraints = iteration == 0 ? first_iteration_constraints : homogeneous_constraints_;
       const double residual = residual_.l2_norm();
       const double reference = std::max(internal_force_.l2_norm(), external_force_.l2_norm());
       outcome.relative_residuals.push_back(reference > 0.0 ? residual / reference : residual);
@@ -326,9 +341,9 @@ QuasiStaticSolver::NewtonOutcome QuasiStaticSolver::solve_step(double new_time)
           outcome.failure = "the out-of-balance force is not finite after " + std::to_string(iteration) + " iterations";
           return outcome;
         }
-      // With prescribed boundary motion, the first residual is that of the old displacement.
-      if ((iteration > 0 || !moves_boundary) &&
-          residual <= settings_.newton.relative_tolerance * reference + settings_.newton.absolute_tolerance)
+      // With prescribed boundary motion and the linear predictor, the first residual is that of
+      // the old displacement; after the extrapolated predictor it is that of the new one.
+      if ((iteration > 0 || !moves_boundary || extrapolated) && converged(residual, reference))
         {
           outcome.converged = true;
           outcome.n_iterations = iteration;
@@ -352,7 +367,32 @@ QuasiStaticSolver::NewtonOutcome QuasiStaticSolver::solve_step(double new_time)
           outcome.failure = failure.message;
           return outcome;
         }
-      increment_ += correction_;
+
+      // The line search: the residual of the linear predictor's iteration 0 (old displacement,
+      // new boundary values) is not comparable with the next, so that correction is taken whole.
+      line_search_base_ = increment_;
+      const bool search = &constraints == &homogeneous_constraints_;
+      double factor = 1.0;
+      for (unsigned int backtrack = 0;; ++backtrack)
+        {
+          increment_ = line_search_base_;
+          increment_.add(factor, correction_);
+          increment_relevant_ = increment_;
+          assemble(new_time, homogeneous_constraints_);
+          if (!search || backtrack == settings_.newton.max_line_search_steps)
+            break;
+          const double trial = residual_.l2_norm();
+          const double trial_reference = std::max(internal_force_.l2_norm(), external_force_.l2_norm());
+          if (std::isfinite(trial) && (trial <= (1.0 - 1e-4 * factor) * residual || converged(trial, trial_reference)))
+            break;
+          // phi(a) = |R(a)|^2 with phi(0) = r^2 and phi'(0) = -2 r^2 (a Newton direction): the
+          // minimiser of the parabola through phi(factor), safeguarded.
+          const double r2 = residual * residual;
+          const double t2 = std::isfinite(trial) ? trial * trial : 1e300;
+          const double minimiser = r2 * factor * factor / (t2 - r2 + 2.0 * r2 * factor);
+          factor = std::clamp(minimiser, 0.1 * factor, 0.5 * factor);
+          ++outcome.n_backtracks;
+        }
     }
 }
 
@@ -369,12 +409,15 @@ LoadSteppingReport QuasiStaticSolver::advance_to(double end_time)
         {
           displacement_owned_ += increment_;
           displacement_ = displacement_owned_;
+          last_increment_ = increment_;
+          last_step_ = step;
           material_points_.commit();
           if (sheet_)
             sheet_->commit();
           time_ += step;
           report.steps.push_back(
-            {time_, step, outcome.n_iterations, outcome.n_linear_iterations, outcome.relative_residuals});
+            {time_, step, outcome.n_iterations, outcome.n_linear_iterations, outcome.relative_residuals,
+             outcome.n_backtracks});
           // After a cutback, grow back towards the requested increment once steps converge again.
           increment = std::min(2.0 * step, settings_.stepping.increment);
           continue;

@@ -221,6 +221,56 @@ TEST(QuasiStaticPullout, PlateauAgreesWithTheExplicitPullout)
   EXPECT_LT(mean_iterations(implicit_problem.report()), 6.0);
 }
 
+// The Mohr-Coulomb pull-out of the small tank (phi = 38.4 deg, psi = 10 deg, no cohesion: plastic
+// points near the clamp at low confinement) with the pull-out's settings (extrapolated predictor,
+// line search, relative tolerance 1e-6) against plain Newton (linear predictor, full steps) to
+// 1e-10: the same curve to 1e-6 of T_max at every point (measured 1.6e-8: the 1e-6 Newton
+// tolerance is of all the forces, reactions included), with no cutback and fewer Newton
+// iterations in all.
+TEST(QuasiStaticPullout, MohrCoulombPulloutWithPredictorAndLineSearchKeepsTheCurve)
+{
+  auto reference_parameters = implicit_small_tank();
+  reference_parameters.pullout.soil.kind = SoilModelKind::mohr_coulomb;
+  reference_parameters.pullout.soil.strength = {38.4, 0.0, 10.0};
+  reference_parameters.pullout.k0 = 0.0; // Jaky's 1 - sin(phi)
+  reference_parameters.pullout.final_displacement = 6e-3;
+  reference_parameters.newton.extrapolate_predictor = false;
+  reference_parameters.newton.max_line_search_steps = 0;
+  auto parameters = reference_parameters;
+  parameters.newton = QuasiStaticPulloutParameters::pullout_newton_settings();
+
+  Mesh mesh_reference(MPI_COMM_WORLD), mesh(MPI_COMM_WORLD);
+  make_rectangular_tank(mesh_reference, 0.6, 0.4, 12, 8);
+  make_rectangular_tank(mesh, 0.6, 0.4, 12, 8);
+  QuasiStaticPullout reference(mesh_reference, reference_parameters), problem(mesh, parameters);
+  const PulloutResult a = reference.run(), b = problem.run();
+  print_newton("Mohr-Coulomb small tank, plain Newton to 1e-10", reference.report());
+  print_newton("Mohr-Coulomb small tank, predictor + line search to 1e-6", problem.report());
+  const auto total = [](const LoadSteppingReport &report) {
+    unsigned int n = 0, backtracks = 0;
+    for (const auto &s : report.steps)
+      {
+        n += s.n_iterations;
+        backtracks += s.n_backtracks;
+      }
+    return std::pair{n, backtracks};
+  };
+  if (root())
+    std::cout << "Newton iterations: plain " << total(reference.report()).first << ", predictor + line search "
+              << total(problem.report()).first << " (" << total(problem.report()).second << " backtracks)"
+              << std::endl;
+
+  ASSERT_EQ(a.curve.size(), b.curve.size());
+  double largest = 0.0;
+  for (std::size_t i = 0; i < a.curve.size(); ++i)
+    largest = std::max(largest, std::abs(a.curve[i].head_tension - b.curve[i].head_tension));
+  if (root())
+    std::cout << "largest head-tension difference " << largest << " N/m of T_max " << a.max_head_tension << std::endl;
+  EXPECT_LT(largest, 1e-6 * a.max_head_tension);
+  EXPECT_EQ(problem.report().n_cutbacks, 0u);
+  EXPECT_LT(total(problem.report()).first, total(reference.report()).first);
+}
+
 TEST(QuasiStaticPullout, BadInputIsRefusedByName)
 {
   Mesh mesh(MPI_COMM_WORLD);

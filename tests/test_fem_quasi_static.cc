@@ -72,6 +72,45 @@ TEST(QuasiStatic, PatchTestOnDistortedMeshIsExact)
     }
 }
 
+// The extrapolated predictor (NewtonSettings::extrapolate_predictor): in a linear problem under
+// proportional loading the last step's increment, scaled, is the next step's exact answer, so the
+// second to fourth of four steps converge on it without a linear solve (relative residual below
+// the 1e-12 tolerance at the predictor) and the field is the exact linear one; with the linear
+// predictor every step needs its solves.
+TEST(QuasiStatic, ExtrapolatedPredictorIsExactUnderProportionalLinearLoading)
+{
+  for (const bool extrapolate : {true, false})
+    {
+      SCOPED_TRACE(extrapolate ? "extrapolated predictor" : "linear predictor");
+      Mesh mesh(MPI_COMM_WORLD);
+      make_rectangle(mesh, 5, 4, Point<dim>(0, 0), Point<dim>(2, 1));
+      auto exact = std::make_shared<LinearDisplacement>();
+      BoundaryConditions bc;
+      for (const auto id : {left, right, bottom, top})
+        bc.displacements.push_back({id, true, true, exact});
+      QuasiStaticSettings settings = exact_settings(1);
+      settings.stepping.increment = 0.25;
+      settings.newton.extrapolate_predictor = extrapolate;
+      QuasiStaticSolver solver(mesh, elastic_soil(), bc, settings);
+      const auto report = solver.advance_to(1.0);
+      ASSERT_EQ(report.steps.size(), 4u);
+      EXPECT_GE(report.steps[0].n_iterations, 1u);
+      for (std::size_t k = 1; k < 4; ++k)
+        if (extrapolate)
+          {
+            EXPECT_EQ(report.steps[k].n_iterations, 0u) << "step " << k;
+            EXPECT_LT(report.steps[k].relative_residuals.front(), 1e-12) << "step " << k;
+          }
+        else
+          EXPECT_GE(report.steps[k].n_iterations, 1u) << "step " << k;
+      dealii::PETScWrappers::MPI::Vector interpolated(solver.space().locally_owned_dofs(), MPI_COMM_WORLD);
+      exact->set_time(1.0);
+      dealii::VectorTools::interpolate(solver.space().mapping(), solver.space().dof_handler(), *exact, interpolated);
+      EXPECT_LT(max_abs_difference(solver.displacement(), interpolated, solver.space().locally_owned_dofs()),
+                1e-10 * 1e-2); // |u| ~ 1e-2 m
+    }
+}
+
 // The same field with displacements on the left and right sides only and the tractions sigma n
 // on the bottom and top: the traction assembly is exact too, and so are the support reactions,
 // sigma n times the side's length (f_int - f_ext at a support's DoFs; the corner nodes shared with
