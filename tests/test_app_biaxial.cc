@@ -1,6 +1,7 @@
 // `geohybrid biaxial` end to end on a tiny sample: the output contract (summary.json keys, one
 // CSV per confinement) and bad input refused with the parameter named, before any output.
 #include "apps/biaxial_command.h"
+#include "text_file.h"
 
 #include <gtest/gtest.h>
 
@@ -9,6 +10,7 @@
 #include <sstream>
 
 namespace fs = std::filesystem;
+using geohybrid::testing::read_text;
 
 namespace
 {
@@ -83,17 +85,6 @@ TEST(BiaxialCommand, BadInputNamesTheParameter)
     }
   fs::remove_all(d);
 }
-
-namespace
-{
-std::string read_text(const fs::path &file)
-{
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-} // namespace
 
 // 'Sample/sample file': the first run makes the sample and saves it, the second reads it (on two
 // threads, the tests side by side) and gives the same curves; a sample file made with another seed

@@ -6,6 +6,7 @@
 #include "apps/calibrate_command.h"
 #include "apps/contact_parameters.h"
 #include "temporary_directory.h"
+#include "text_file.h"
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -19,6 +20,7 @@
 #include <sstream>
 
 namespace fs = std::filesystem;
+using geohybrid::testing::read_text;
 using geohybrid::testing::TemporaryDirectory;
 
 namespace
@@ -74,14 +76,6 @@ std::vector<std::vector<double>> read_rows(const fs::path &file)
       rows.push_back(row);
     }
   return rows;
-}
-
-std::string read_text(const fs::path &file)
-{
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 /// A number of a flat summary.json.
