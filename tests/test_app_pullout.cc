@@ -4,6 +4,7 @@
 #include "apps/pullout_command.h"
 #include "apps/pullout_seeds.h"
 #include "dem/checkpoint.h"
+#include "text_file.h"
 
 #include <gtest/gtest.h>
 
@@ -16,6 +17,7 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using geohybrid::testing::lines_of;
 
 namespace
 {
@@ -63,15 +65,6 @@ std::string error_of(const std::string &file)
       return e.what();
     }
   return "";
-}
-
-std::vector<std::string> lines_of(const fs::path &file)
-{
-  std::ifstream in(file);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);)
-    lines.push_back(line);
-  return lines;
 }
 } // namespace
 

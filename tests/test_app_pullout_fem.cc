@@ -6,6 +6,7 @@
 // curve on 2 ranks.
 #include "apps/compare_command.h"
 #include "apps/pullout_command.h"
+#include "text_file.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -18,6 +19,7 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using geohybrid::testing::lines_of;
 
 namespace
 {
@@ -74,15 +76,6 @@ std::string error_of(const std::string &file, MPI_Comm communicator = MPI_COMM_W
       return e.what();
     }
   return "";
-}
-
-std::vector<std::string> lines_of(const fs::path &file)
-{
-  std::ifstream in(file);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);)
-    lines.push_back(line);
-  return lines;
 }
 
 /// The (u, T) rows of a curve file.
