@@ -4,6 +4,7 @@
 #include "apps/run_directory.h"
 
 #include "fem/pullout_problem.h"
+#include "fem/quasi_static_pullout.h"
 #include "fem/tank_mesh.h"
 
 #include <deal.II/base/mpi.h>
@@ -37,6 +38,14 @@ void declare_continuum_parameters(ParameterHandler &prm)
                     "at about half the cell size: more nodes per cell tie each cell to more penalty springs, and the "
                     "mass-scaled sheet's pull becomes noisy and overshoots (5 nodes per cell: +56 % on a 0.6 m x "
                     "0.4 m tank, 2 per cell: +8 %) [m]");
+  prm.declare_entry("solver", "explicit", Patterns::Selection("explicit|implicit"),
+                    "fem mode only: 'explicit' (central differences with local damping, the clamp pulled at "
+                    "'Pull/rate'; the solver the hybrid runs in lockstep with the DEM) or 'implicit' (quasi-static "
+                    "load steps of 'displacement increment', Newton on the consistent tangent with PETSc and "
+                    "BoomerAMG: no rate, no damping, no mass scaling; simple run-out only) [-]");
+  prm.declare_entry("displacement increment", "0.5e-3", Patterns::Double(1e-7, 1.0),
+                    "fem mode, implicit solver only: the head displacement of a load step, the largest used (halved "
+                    "on non-convergence, grown back after); at most 'Pull/record interval' [m]");
   prm.declare_entry("element degree", "1", Patterns::Integer(1, 2),
                     "fem mode only: 1 (Q1, cheaper per step and per stable step) or 2 (Q2) [-]");
   prm.declare_entry("soil model", "Mohr-Coulomb", Patterns::Selection("linear elastic|Mohr-Coulomb|Drucker-Prager"),
@@ -83,6 +92,8 @@ namespace
 struct ContinuumInput
 {
   fem::PulloutProblemParameters problem;
+  bool implicit_solver = false;
+  double displacement_increment = 0.5e-3; ///< implicit solver: the load step's head displacement [m]
   std::string mesh_file;
   double cell_size = 0.025;
   double snapshot_interval = 0.0;
@@ -114,6 +125,8 @@ ContinuumInput parse_continuum(ParameterHandler &prm, const PullOutInput &in, co
   prm.enter_subsection("Continuum");
   c.mesh_file = prm.get("mesh file");
   c.cell_size = prm.get_double("cell size");
+  c.implicit_solver = prm.get("solver") == "implicit";
+  c.displacement_increment = prm.get_double("displacement increment");
   p.sheet_node_spacing = prm.get_double("sheet node spacing");
   p.element_degree = static_cast<unsigned int>(prm.get_integer("element degree"));
   p.soil.kind = fem::soil_model_kind_from_string(prm.get("soil model"));
@@ -136,6 +149,10 @@ ContinuumInput parse_continuum(ParameterHandler &prm, const PullOutInput &in, co
                                 " must be 0 (automatic) or at least 1 [-]");
   p.automatic_mass_scaling = scaling == 0.0;
   p.sheet.mass_scaling = std::max(1.0, scaling);
+  if (c.implicit_solver && c.displacement_increment > p.output_interval)
+    throw std::invalid_argument(where + ": 'Continuum/displacement increment' = " + number(c.displacement_increment) +
+                                " m must be at most 'Pull/record interval' = " + number(p.output_interval) +
+                                " m (every point of the curve is a converged load step)");
   return c;
 }
 
@@ -208,10 +225,28 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
       c.problem.snapshot_interval = c.snapshot_interval;
     }
 
-  // Everything that can be refused is checked here, before a file is written.
+  if (c.implicit_solver && g.anchorage == dem::Anchorage::wrap_around)
+    throw std::invalid_argument(where + ": 'Continuum/solver' = implicit takes a simple run-out only: its sheet lies "
+                                        "straight (fem/quasi_static_pullout.h); use 'set solver = explicit' for the "
+                                        "wrap-around");
+
+  // Everything that can be refused is checked here, before a file is written: the mesh, and the
+  // problem of the chosen solver (parameters, the sheet in the tank).
   dealii::parallel::distributed::Triangulation<fem::dim> mesh(comm);
   make_mesh(mesh, c, g, where);
-  fem::PulloutProblem problem(mesh, c.problem, c.mesh_file.empty() ? where : where + ", mesh file '" + c.mesh_file + "'");
+  const std::string problem_where = c.mesh_file.empty() ? where : where + ", mesh file '" + c.mesh_file + "'";
+  std::optional<fem::PulloutProblem> explicit_problem;
+  std::optional<fem::QuasiStaticPullout> implicit_problem;
+  if (c.implicit_solver)
+    {
+      fem::QuasiStaticPulloutParameters q;
+      q.pullout = c.problem;
+      q.displacement_increment = c.displacement_increment;
+      q.minimum_increment = std::min(q.minimum_increment, c.displacement_increment);
+      implicit_problem.emplace(mesh, q, problem_where);
+    }
+  else
+    explicit_problem.emplace(mesh, c.problem, problem_where);
 
   std::optional<PulloutOutput> output;
   on_rank_zero(comm, [&] {
@@ -223,44 +258,77 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   });
   const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
   if (writer)
-    std::cout << "geohybrid pullout: " << anchorage_name(g) << ", H = " << number(g.cover, 4) << " m, L = "
-              << number(g.anchorage_length, 4) << " m; mode fem: " << mesh.n_global_active_cells() << " Q" << c.problem.element_degree << " cells ("
-              << (c.mesh_file.empty() ? "generated" : c.mesh_file) << "), " << fem::to_string(c.problem.soil.kind)
-              << " soil, time step " << number(problem.solver().time_step(), 4) << " s, " << n_ranks
-              << " MPI rank" << (n_ranks > 1 ? "s" : "") << std::endl;
+    {
+      std::cout << "geohybrid pullout: " << anchorage_name(g) << ", H = " << number(g.cover, 4) << " m, L = "
+                << number(g.anchorage_length, 4) << " m; mode fem: " << mesh.n_global_active_cells() << " Q"
+                << c.problem.element_degree << " cells (" << (c.mesh_file.empty() ? "generated" : c.mesh_file)
+                << "), " << fem::to_string(c.problem.soil.kind) << " soil, ";
+      if (c.implicit_solver)
+        std::cout << "implicit solver, load steps of " << number(1e3 * c.displacement_increment, 4) << " mm";
+      else
+        std::cout << "explicit solver, time step " << number(explicit_problem->solver().time_step(), 4) << " s";
+      std::cout << ", " << n_ranks << " MPI rank" << (n_ranks > 1 ? "s" : "") << std::endl;
+    }
 
-  // The pull; rank 0 records every point of the curve as it comes.
+  // The pull; rank 0 records every point of the curve as it comes, with the sheet as it is then.
   std::optional<ProgressReport> progress;
   if (writer)
     progress.emplace("pulling", in.pull.final_displacement);
-  const std::size_t end = problem.lower_part_end(), middle = end / 2;
-  const auto record = [&](const fem::PulloutCurvePoint &point, const fem::EmbeddedSheet &sheet) {
+  const std::vector<double> &arc_lengths =
+    c.implicit_solver ? implicit_problem->arc_lengths() : explicit_problem->arc_lengths();
+  const std::size_t end = c.implicit_solver ? arc_lengths.size() - 1 : explicit_problem->lower_part_end(),
+                    middle = end / 2;
+  const auto record = [&](const fem::PulloutCurvePoint &point, const fem::TrussSheet &sheet,
+                          const std::vector<dealii::Tensor<1, fem::dim>> &u) {
     if (!writer)
       return;
-    const auto &u = sheet.displacements();
     // The clamp (node 0) is the sheet's first node inside the tank: it sits on the front wall.
     output->add_point(point.head_displacement, point.head_tension, {{u[0][0], u[middle][0], u[end][0]}});
-    // A profile is the sheet now, at the clamp's displacement now (the curve's point is the mean
-    // over its interval).
+    // A profile is the sheet now, at the clamp's displacement now (with the explicit solver the
+    // curve's point is the mean over its interval).
     if (output->profile_due(u[0][0]))
       {
-        const std::vector<double> T = sheet.axial_forces();
-        const auto &s = problem.arc_lengths();
+        const std::vector<double> T = sheet.axial_forces(u);
         std::vector<SheetTensionRow> rows;
         for (std::size_t k = 0; k < T.size(); ++k)
           {
-            const auto x = 0.5 * (sheet.sheet().node(k) + u[k] + sheet.sheet().node(k + 1) + u[k + 1]);
-            rows.push_back({k, 0.5 * (s[k] + s[k + 1]), x[0], x[1], T[k]});
+            const auto x = 0.5 * (sheet.node(k) + u[k] + sheet.node(k + 1) + u[k + 1]);
+            rows.push_back({k, 0.5 * (arc_lengths[k] + arc_lengths[k + 1]), x[0], x[1], T[k]});
           }
         output->add_profile(u[0][0], rows);
       }
     progress->update(point.head_displacement);
   };
-  const fem::PulloutResult result = problem.run(record);
+  fem::PulloutResult result;
+  if (c.implicit_solver)
+    try
+      {
+        const fem::QuasiStaticSolver &solver = implicit_problem->solver();
+        result = implicit_problem->run([&](const fem::PulloutCurvePoint &point) {
+          record(point, solver.sheet()->sheet(), solver.sheet_displacements());
+        });
+      }
+    catch (const fem::ConvergenceFailure &failure)
+      {
+        // The curve up to the last converged point is kept, without summary.json: the directory
+        // does not look like a finished run (apps/run_directory.h).
+        on_rank_zero(comm, [&] {
+          progress->finish();
+          output->finish("FEM (implicit, stopped)", in.experimental_T_max, in.pull.final_displacement);
+        });
+        throw std::runtime_error(where + ": the implicit solver stopped at head displacement " +
+                                 number(1e3 * failure.last_converged_time(), 4) +
+                                 " mm (the curve up to there is in " + out.string() +
+                                 ", no summary.json: the run did not finish): " + failure.what());
+      }
+  else
+    result = explicit_problem->run([&](const fem::PulloutCurvePoint &point, const fem::EmbeddedSheet &sheet) {
+      record(point, sheet.sheet(), sheet.displacements());
+    });
 
   on_rank_zero(comm, [&] {
     progress->finish();
-    output->finish("FEM", in.experimental_T_max, in.pull.final_displacement);
+    output->finish(c.implicit_solver ? "FEM (implicit)" : "FEM", in.experimental_T_max, in.pull.final_displacement);
     const double wall_time = seconds(), T_max = output->max_head_tension();
     Summary summary;
     output->fill_summary(summary, "fem", anchorage_name(g), in.experimental_T_max);
@@ -269,7 +337,8 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
     summary.set("element_degree", static_cast<double>(c.problem.element_degree));
     summary.set("soil_model", fem::to_string(c.problem.soil.kind));
     summary.set("mesh", c.mesh_file.empty() ? "generated, cell size " + number(c.cell_size) + " m" : c.mesh_file);
-    summary.set("n_sheet_nodes", static_cast<double>(problem.arc_lengths().size()));
+    summary.set("n_sheet_nodes", static_cast<double>(arc_lengths.size()));
+    summary.set("solver", c.implicit_solver ? "implicit" : "explicit");
     summary.set("sigma_v_at_sheet_Pa", result.vertical_stress_at_sheet);
     summary.set("gamma_H_Pa", in.tank.unit_weight * g.cover);
     summary.set("geostatic_interface_limit_kN_per_m", result.geostatic_interface_limit / 1e3);
@@ -277,6 +346,20 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
     summary.set("time_step_s", result.time_step);
     summary.set("n_steps", static_cast<double>(result.n_steps));
     summary.set("sheet_mass_scaling", result.sheet_mass_scaling);
+    if (c.implicit_solver)
+      {
+        // The implicit solver's cost: load steps (n_steps), Newton iterations (linear solves) and
+        // Krylov iterations summed over them, and the steps that had to be halved.
+        unsigned int n_newton = 0, n_krylov = 0;
+        for (const fem::StepRecord &step : implicit_problem->report().steps)
+          {
+            n_newton += step.n_iterations;
+            n_krylov += step.n_linear_iterations;
+          }
+        summary.set("n_newton_iterations", static_cast<double>(n_newton));
+        summary.set("n_krylov_iterations", static_cast<double>(n_krylov));
+        summary.set("n_cutbacks", static_cast<double>(implicit_problem->report().n_cutbacks));
+      }
     summary.set("n_mpi_ranks", static_cast<double>(n_ranks));
     summary.set("wall_time_s", wall_time);
     summary.write(out / "summary.json");

@@ -1,7 +1,11 @@
 #pragma once
 // `geohybrid pullout FILE.prm` with 'set mode = fem': the pull-out test with the soil as a deal.II
-// continuum (fem/pullout_problem.h: explicit solver, geostatic K0 soil, tension-only truss sheet
-// with its Mohr-Coulomb interface, the clamp pulled), from the same input file as the DEM run.
+// continuum (geostatic K0 soil, tension-only truss sheet with its Mohr-Coulomb interface, the
+// clamp pulled), from the same input file as the DEM run, with either solver ('Continuum/solver'):
+// explicit (fem/pullout_problem.h: central differences, the clamp at 'Pull/rate') or implicit
+// (fem/quasi_static_pullout.h: quasi-static load steps, Newton, every curve point converged; the
+// straight run-out only). A run the implicit solver cannot finish keeps its curve up to the last
+// converged point and writes no summary.json.
 //
 // What the two modes share keeps its meaning: Tank/length and fill height are the soil's extent,
 // Anchorage (simple run-out: L, H) the sheet, Sheet/J, areal mass and Interface/friction angle the

@@ -229,8 +229,9 @@ void ProgressReport::update(double now)
     }
   else
     {
-      // Plain lines for logs: one every 10 %.
-      if (percent / 10 == last_percent_ / 10)
+      // Plain lines for logs: one every 10 %, and at least one a minute (a phase whose fraction
+      // moves slowly, such as a layer of the tank's filling settling, still shows it is alive).
+      if (percent / 10 == last_percent_ / 10 && std::chrono::duration<double>(clock - last_print_).count() < 60.0)
         return;
       std::fprintf(stderr, "%s: %d%% (elapsed %.0f s, ETA %.0f s)\n", label_.c_str(), percent, elapsed, eta);
     }
