@@ -120,7 +120,7 @@ TankFillingSpec PullOutTankSpec::resolved_filling() const
   const PullOutGeometry g = geometry;
   const SheetParameters sheet_parameters = sheet;
   const double segment = max_segment_length;
-  laying.slot_height = 0.0; // automatic: between the sheet's thickness and the smallest grain
+  laying.slot_height = 0.0; // automatic: the sheet's thickness plus half the smallest grain
   laying.lay = [g, sheet_parameters, segment](const DemSystem &settled) {
     // The sheet rests on the highest grain under its lower part (it is laid on the lift).
     const ParticleSet &p = settled.particles();

@@ -49,7 +49,8 @@ struct SheetLaying
   /// The sheet is laid once this many layers have settled: in [1, n_layers - 1].
   std::size_t layers_below = 1;
   /// Height of the slot in the front wall, centred on the sheet's first node; above the sheet's
-  /// thickness and below the smallest grain's diameter. 0 = halfway between the two [m].
+  /// thickness, and the gap it leaves beside the sheet (height - thickness) below the smallest
+  /// grain's diameter. 0 = the thickness plus half the smallest grain's diameter [m].
   double slot_height = 0.0;
   /// Makes the sheet from the settled layers below it (e.g. resting on their surface). Its first
   /// node must lie outside the front wall, x > width; make it kinematic (prescribe_velocity) to
@@ -126,7 +127,7 @@ struct FilledTank
 /// Fills the tank. `progress` (optional) is called now and then with a fraction in [0, 1].
 /// Throws std::invalid_argument for a spec that cannot work (no layer, a porosity outside
 /// [0.05, 0.8], layers too thin for their particles, a sheet laid outside [1, n_layers - 1] or whose
-/// first node is inside the tank, a slot narrower than the sheet or wider than the smallest grain) and std::runtime_error when a layer cannot
+/// first node is inside the tank, a slot narrower than the sheet or leaving a gap beside it wider than the smallest grain) and std::runtime_error when a layer cannot
 /// reach its porosity or the fill does not settle within max_steps_per_layer, naming the layer.
 FilledTank fill_tank_in_layers(const TankFillingSpec &spec, const std::function<void(double)> &progress = {});
 
