@@ -46,6 +46,9 @@ void declare_continuum_parameters(ParameterHandler &prm)
   prm.declare_entry("displacement increment", "0.5e-3", Patterns::Double(1e-7, 1.0),
                     "fem mode, implicit solver only: the head displacement of a load step, the largest used (halved "
                     "on non-convergence, grown back after); at most 'Pull/record interval' [m]");
+  prm.declare_entry("preconditioner", "BoomerAMG", Patterns::Selection("BoomerAMG|GAMG"),
+                    "fem mode, implicit solver only: the AMG of the Krylov solves: hypre's BoomerAMG (scalar) or "
+                    "PETSc's GAMG given the rigid-body modes (fem/rigid_body_amg.h) [-]");
   prm.declare_entry("element degree", "1", Patterns::Integer(1, 2),
                     "fem mode only: 1 (Q1, cheaper per step and per stable step) or 2 (Q2) [-]");
   prm.declare_entry("soil model", "Mohr-Coulomb", Patterns::Selection("linear elastic|Mohr-Coulomb|Drucker-Prager"),
@@ -93,6 +96,7 @@ struct ContinuumInput
 {
   fem::PulloutProblemParameters problem;
   bool implicit_solver = false;
+  bool rigid_body_amg = false;            ///< implicit solver: GAMG with the rigid-body modes
   double displacement_increment = 0.5e-3; ///< implicit solver: the load step's head displacement [m]
   std::string mesh_file;
   double cell_size = 0.025;
@@ -126,6 +130,7 @@ ContinuumInput parse_continuum(ParameterHandler &prm, const PullOutInput &in, co
   c.mesh_file = prm.get("mesh file");
   c.cell_size = prm.get_double("cell size");
   c.implicit_solver = prm.get("solver") == "implicit";
+  c.rigid_body_amg = prm.get("preconditioner") == "GAMG";
   c.displacement_increment = prm.get_double("displacement increment");
   p.sheet_node_spacing = prm.get_double("sheet node spacing");
   p.element_degree = static_cast<unsigned int>(prm.get_integer("element degree"));
@@ -243,6 +248,8 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
       q.pullout = c.problem;
       q.displacement_increment = c.displacement_increment;
       q.minimum_increment = std::min(q.minimum_increment, c.displacement_increment);
+      if (c.rigid_body_amg)
+        q.linear_solver.preconditioner = fem::LinearSolverSettings::Preconditioner::rigid_body_amg;
       implicit_problem.emplace(mesh, q, problem_where);
     }
   else

@@ -108,6 +108,14 @@ void QuasiStaticSolver::setup_system()
     v->reinit(owned_dofs_, comm);
   increment_relevant_.reinit(owned_dofs_, relevant_dofs_, comm);
   displacement_.reinit(owned_dofs_, relevant_dofs_, comm);
+  if (settings_.linear_solver.preconditioner == LinearSolverSettings::Preconditioner::rigid_body_amg)
+    {
+      std::vector<dealii::Point<dim>> sheet_nodes;
+      if (sheet_)
+        for (std::size_t k = 0; k < sheet_->sheet().n_nodes(); ++k)
+          sheet_nodes.push_back(sheet_->sheet().node(k));
+      rigid_body_modes_ = rigid_body_modes(space_, owned_dofs_, n_soil, sheet_nodes);
+    }
 }
 
 void QuasiStaticSolver::attach_sheet(const TrussSheet &sheet, std::vector<SheetClamp> clamps)
@@ -271,29 +279,37 @@ unsigned int QuasiStaticSolver::solve_linear_system(const dealii::AffineConstrai
       // preconditioned and reports the true residual).
       const auto &linear = settings_.linear_solver;
       dealii::ReductionControl control(linear.max_iterations, 1e-300, linear.relative_tolerance);
-      dealii::PETScWrappers::PreconditionBoomerAMG::AdditionalData amg_data;
-      amg_data.symmetric_operator = symmetric;
-      amg_data.strong_threshold = linear.amg_strong_threshold;
-      amg_data.aggressive_coarsening_num_levels = linear.amg_aggressive_coarsening_levels;
-      dealii::PETScWrappers::PreconditionBoomerAMG amg(tangent_, amg_data);
+      const bool rigid_body = linear.preconditioner == LinearSolverSettings::Preconditioner::rigid_body_amg;
+      std::unique_ptr<dealii::PETScWrappers::PreconditionBase> amg;
+      if (rigid_body)
+        amg = std::make_unique<RigidBodyAMG>(tangent_, rigid_body_modes_);
+      else
+        {
+          dealii::PETScWrappers::PreconditionBoomerAMG::AdditionalData amg_data;
+          amg_data.symmetric_operator = symmetric;
+          amg_data.strong_threshold = linear.amg_strong_threshold;
+          amg_data.aggressive_coarsening_num_levels = linear.amg_aggressive_coarsening_levels;
+          amg = std::make_unique<dealii::PETScWrappers::PreconditionBoomerAMG>(tangent_, amg_data);
+        }
       try
         {
           if (symmetric)
             {
               dealii::PETScWrappers::SolverCG cg(control, space_.communicator());
-              cg.solve(tangent_, correction_, newton_rhs_, amg);
+              cg.solve(tangent_, correction_, newton_rhs_, *amg);
             }
           else
             {
               dealii::PETScWrappers::SolverGMRES gmres(control, space_.communicator(),
                                                        dealii::PETScWrappers::SolverGMRES::AdditionalData(200, true));
-              gmres.solve(tangent_, correction_, newton_rhs_, amg);
+              gmres.solve(tangent_, correction_, newton_rhs_, *amg);
             }
         }
       catch (const dealii::SolverControl::NoConvergence &e)
         {
           std::ostringstream message;
-          message << "the linear solver (" << (symmetric ? "CG" : "GMRES") << " + BoomerAMG) did not converge: residual "
+          message << "the linear solver (" << (symmetric ? "CG" : "GMRES") << " + " << (rigid_body ? "GAMG" : "BoomerAMG")
+                  << ") did not converge: residual "
                   << e.last_residual << " after " << e.last_step << " iterations";
           throw LinearSolverFailure{message.str()};
         }

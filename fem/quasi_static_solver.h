@@ -21,6 +21,7 @@
 #include "fem/displacement_space.h"
 #include "fem/geostatic_stress.h"
 #include "fem/implicit_sheet.h"
+#include "fem/rigid_body_amg.h"
 #include "fem/material_point_history.h"
 
 #include <deal.II/lac/petsc_sparse_matrix.h>
@@ -59,6 +60,14 @@ struct NewtonSettings
 /// elasticity (66,000 DoFs) than the default 0.25 without.
 struct LinearSolverSettings
 {
+  /// BoomerAMG (hypre, scalar) or RigidBodyAMG (PETSc's GAMG with the plane's rigid-body modes,
+  /// fem/rigid_body_amg.h).
+  enum class Preconditioner
+  {
+    boomer_amg,
+    rigid_body_amg
+  };
+  Preconditioner preconditioner = Preconditioner::boomer_amg;
   double relative_tolerance = 1e-10; ///< stop when the reported residual fell by this factor [-]
   unsigned int max_iterations = 5000;
   double amg_strong_threshold = 0.7;
@@ -190,6 +199,8 @@ private:
   DisplacementSpace space_;
   MaterialPointHistory material_points_;
   std::unique_ptr<ImplicitSheet> sheet_;
+  /// The near null space of RigidBodyAMG, on the soil's and the sheet's DoFs (set up with the system).
+  std::array<dealii::PETScWrappers::MPI::Vector, 3> rigid_body_modes_;
   dealii::IndexSet owned_dofs_, relevant_dofs_; ///< the soil's, plus the sheet's
   dealii::AffineConstraints<double> homogeneous_constraints_;
   dealii::IndexSet x_component_dofs_;
