@@ -3,6 +3,7 @@
 #include "compare_command.h"
 #include "plot.h"
 #include "pullout_command.h"
+#include "pullout_input.h"
 #include "run_directory.h"
 
 #include <algorithm>
@@ -57,6 +58,9 @@ int run_pullout_seeds(const std::string &input_file, int n_seeds)
   const long n_particles = prm.get_integer("number of particles");
   prm.leave_subsection();
   const std::string mode = prm.get("mode");
+  // Bad input (geometry that does not fit the tank, a bad entry) is refused before the parent
+  // directory is written, as a single run refuses it before its own.
+  parse_pullout(prm, input_file, mode == "dem");
   const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
   write_resolved_parameters(prm, out);
 

@@ -195,6 +195,20 @@ TEST(PullOutCommand, SeedsAverageTheCurves)
   const std::string input = write_tiny_input(d);
   EXPECT_THROW(geohybrid::apps::run_pullout_seeds(input, 0), std::invalid_argument);
   EXPECT_FALSE(fs::exists(d / "out"));
+  // A sheet longer than the tank: refused by name before the parent directory is written.
+  {
+    std::ofstream(d / "bad.prm") << "include " << input << "\nsubsection Anchorage\n  set L = 5\nend\n";
+    try
+      {
+        geohybrid::apps::run_pullout_seeds((d / "bad.prm").string(), 2);
+        ADD_FAILURE() << "a 5 m sheet was accepted";
+      }
+    catch (const std::invalid_argument &e)
+      {
+        EXPECT_NE(std::string(e.what()).find("'Anchorage/L'"), std::string::npos) << e.what();
+      }
+    EXPECT_FALSE(fs::exists(d / "out"));
+  }
   ASSERT_EQ(geohybrid::apps::run_pullout_seeds(input, 2), 0);
   const fs::path out = d / "out";
   for (const char *seed : {"seed_3", "seed_4"})
