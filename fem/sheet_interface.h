@@ -4,23 +4,25 @@
 //
 // Each sheet node k stands for a length L_k of sheet (truss_sheet.h). Large slip: the node is
 // compared with the soil at a point of the sheet's reference path (sheet_path.h, the polyline of
-// the nodes as laid), at arc length s_k, which follows the node's slip: s_k starts at the node's
-// own reference point and moves by the tangential slip of every step, so a node that slides round
-// a corner of a wrap-around meets the soil of the part it has reached, along that part's tangent
-// t and normal n. Its relative displacement to the soil there,
-// g = (X_k + u_k) - (P(s_k) + sum_i N_i(P(s_k)) u_i), is split along t and n:
-// - normal: a penalty spring per face, F_n = -2 k_n (g.n) L_k n, ties the sheet to the soil
-//   (soil on both faces: no opening);
+// the nodes as laid), at arc length s_k, which follows the node: every step s_k moves to the foot
+// of the node on the path displaced with the soil (SheetPath::nearest_point, searched from the
+// segment it was on), so a node that slides round a corner of a wrap-around meets the soil of the
+// part it has reached, along that part's tangent t and normal n. With P(s) the path's point and
+// u_s = sum_i N_i(P(s_k)) u_i the soil's displacement there:
+// - normal: a penalty spring per face, F_n = -2 k_n g_n L_k n, g_n = ((X_k + u_k - u_s) - P(s_k)).n
+//   the node's distance from the displaced path, ties the sheet to the soil (soil on both faces:
+//   no opening);
 // - shear: an elastic-perfectly-plastic slider per face with the Mohr-Coulomb limit
 //   |tau| <= c_i + max(0, -sigma_nn) tan(delta), sigma_nn = n.sigma.n the soil's normal stress on
 //   the sheet's plane (the mean over the quadrature points of the cell holding P(s_k); tension
-//   positive, so -sigma_nn is the confining pressure). tau is updated incrementally from the
-//   tangential slip increment ds = g.t, and s_k += ds (the soil point moves under the node);
-//   F_t = -2 tau L_k t.
+//   positive, so -sigma_nn is the confining pressure). tau is updated incrementally from the slip
+//   of the step, ds = s_k,new - s_k (the distance the node moved along the path relative to the
+//   soil) and committed every step; F_t = -2 tau L_k t.
 // The soil receives -F at P(s_k) through the N_i. At full sliding, a straight sheet of length L
 // under a uniform sigma_v holds T_max = 2 (c_i + sigma_v tan(delta)) L. On a straight sheet this is
-// the small-slip tie of a node to its reference point, but for the shape functions and the cell
-// following the slip (a difference of the order of the soil's strain times the slip).
+// the small-slip tie of a node to its reference point, but for the soil's displacement, shape
+// functions and cell taken where the node is rather than where it started (a difference of the
+// order of the soil's strain times the slip; the run-out tank's plateau moved by -0.8 %).
 //
 // At a corner (a vertex of the path where its direction turns) the tension turning round the
 // node pushes it into the soil on the inside of the bend: the normal penalty carries that force,
@@ -31,10 +33,18 @@
 // concentrated on the one node at a sharp corner it would make that node's strength a function of
 // the sheet's tension and of the node spacing rather than of the soil's stress. What this leaves
 // out, the Euler-Eytelwein friction of a sheet bent round a soil edge (T_out / T_in = exp(theta
-// tan(delta)) on a rigid edge), is left to the soil's response to the corner force.
-// A node whose s passes a vertex moves to the next segment's frame (sheet_path.h); a node that
-// passes the path's start (the clamp, pulled out through the front wall) keeps the soil at the
-// path's start, as in the small-slip tie.
+// tan(delta)) on a rigid edge), is left to the soil's response to the corner force. On the inside
+// of a corner a node has a foot on both parts; it moves to the part it is nearer to when it
+// crosses the bisector, so its slip jumps by twice its distance from the parts then (in the
+// sliding direction: the slider is at its limit there anyway). Corners are best laid rounded over
+// a few segments (PulloutProblem does): at a sharp one the segments beside it cut across it, and
+// each node beside it, held along its own part's normal only, balances the tension of the
+// inclined segment by its component along that part, so the tension rises across the corner (the
+// L-shaped sheet of tests/test_fem_sheet.cc held +57 % over its interface limit with a sharp
+// 90 degree corner, +9.6 % with the corner rounded over four segments, about half of which is the
+// block's fixed walls raising the normal stress near the clamp).
+// A node that passes the path's start (the clamp, pulled out through the front wall) keeps the soil
+// at the path's start, as the small-slip tie did.
 //
 // The sheet is replicated on every MPI rank (hundreds of nodes), and so are the s_k: every rank
 // follows every node's point from cell to neighbouring cell (no global search in a step; the

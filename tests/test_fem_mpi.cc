@@ -5,6 +5,7 @@
 #include "fem/explicit_solver.h"
 #include "fem/pullout_problem.h"
 #include "fem/quasi_static_solver.h"
+#include "test_fem_support.h"
 #include "temporary_directory.h"
 
 #include <deal.II/base/function_lib.h>
@@ -370,21 +371,8 @@ TEST(Mpi, EmbeddedSheetGivesTheSameResultOnTwoRanks)
 // runs part from round-off at once and reach 3 % of T_max by 8 mm; not understood, see README.)
 TEST(Mpi, WrapAroundSlidesRoundItsCornersAlikeOnTwoRanks)
 {
-  PulloutProblemParameters p;
-  p.sheet_length = 0.425;
-  p.sheet_depth = 0.375;
-  p.wrap_around = true;
-  p.return_height = 0.15;
-  p.upper_length = 0.2;
-  p.sheet_node_spacing = 0.025;
-  p.soil.kind = SoilModelKind::linear_elastic;
-  p.soil.young_modulus = 20e6;
-  p.soil.poisson_ratio = 0.3;
-  p.soil_density = 15.2e3 / 9.81;
-  p.surcharge = 30e3;
-  p.pull_rate = 0.004;
+  PulloutProblemParameters p = geohybrid::fem::testing::small_wrap_around_tank(0.004);
   p.final_displacement = 0.008;
-  p.output_interval = 0.5e-3;
   Mesh mesh_distributed(MPI_COMM_WORLD), mesh_whole(MPI_COMM_SELF);
   make_pullout_tank_mesh(mesh_distributed, 0.8, 0.6, 0.05, p, "wrap-around");
   make_pullout_tank_mesh(mesh_whole, 0.8, 0.6, 0.05, p, "wrap-around");

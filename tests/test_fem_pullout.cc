@@ -175,24 +175,6 @@ TEST(PulloutProblem, WritesSnapshotsAtTheirInterval)
   std::filesystem::remove_all(directory);
 }
 
-namespace
-{
-/// A wrap-around in a 0.8 m x 0.6 m tank of elastic soil (E = 20 MPa, nu = 0.3, K0 = nu / (1 -
-/// nu)) of 15.2 kN/m^3 under 30 kPa, 50 mm cells: lower part L = 0.425 m at H = 0.375 m, return
-/// D1 = 0.15 m, upper part B = 0.2 m at H - D1 = 0.225 m, each through the middle of a row (the
-/// return of a column) of cells, nodes every 25 mm, pulled 30 mm.
-PulloutProblemParameters wrap_around_tank(double pull_rate)
-{
-  PulloutProblemParameters p = small_pullout_tank(pull_rate);
-  p.sheet_length = 0.425;
-  p.sheet_depth = 0.375;
-  p.wrap_around = true;
-  p.return_height = 0.15;
-  p.upper_length = 0.2;
-  p.final_displacement = 0.03;
-  return p;
-}
-} // namespace
 
 // The wrap-around in an elastic soil slides round its two corners (laid as arcs of twice the node
 // spacing, PulloutProblemParameters::wrap_corner_radius) and the head tension settles about the
@@ -207,7 +189,7 @@ PulloutProblemParameters wrap_around_tank(double pull_rate)
 // 30 mm: mean +0.7 % of T_lim, between -10 % and +15 %; the lower part alone would hold 0.58 T_lim.
 TEST(PulloutProblem, WrapAroundReachesTheInterfaceLimitOfItsThreeParts)
 {
-  const auto p = wrap_around_tank(0.004);
+  const auto p = small_wrap_around_tank(0.004);
   Mesh mesh(MPI_COMM_WORLD);
   make_pullout_tank_mesh(mesh, 0.8, 0.6, 0.05, p, "wrap-around test");
   EXPECT_EQ(mesh.n_global_active_cells(), 16u * 12u);
