@@ -61,7 +61,7 @@ struct PulloutProblemParameters
   /// Why: at a sharp corner the segments on either side of it cut across the corner, and the
   /// nodes beside it, each held along the normal of its own part, balance their tension only by
   /// the component along that part: the L-shaped sheet of test_fem_sheet.cc held +57 % over its
-  /// interface limit with a sharp corner, +9.6 % rounded over 4 segments (fem/README.md). [m]
+  /// interface limit with a sharp corner, +9.2 % rounded over 4 segments (fem/README.md). [m]
   double wrap_corner_radius = 0.0;
   /// The corners' radius used: wrap_corner_radius, or twice the node spacing if it is 0 (0 for
   /// a run-out) [m].

@@ -41,7 +41,7 @@
 // each node beside it, held along its own part's normal only, balances the tension of the
 // inclined segment by its component along that part, so the tension rises across the corner (the
 // L-shaped sheet of tests/test_fem_sheet.cc held +57 % over its interface limit with a sharp
-// 90 degree corner, +9.6 % with the corner rounded over four segments, about half of which is the
+// 90 degree corner, +9.2 % with the corner rounded over four segments, about half of which is the
 // block's fixed walls raising the normal stress near the clamp).
 // A node that passes the path's start (the clamp, pulled out through the front wall) keeps the soil
 // at the path's start, as the small-slip tie did.

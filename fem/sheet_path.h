@@ -37,6 +37,7 @@ public:
       }
   }
 
+  double switch_tolerance() const { return 1e-9 * length(); } ///< see nearest_point [m]
   unsigned int n_segments() const { return static_cast<unsigned int>(tangents_.size()); }
   double length() const { return arc_lengths_.back(); } ///< [m]
   double vertex_arc_length(std::size_t j) const { return arc_lengths_[j]; } ///< [m]
@@ -64,6 +65,10 @@ public:
   /// a foot on both parts, this takes the part it is nearer to (a node that the tension pulls
   /// round the corner, cutting it, moves to the part it is reaching when it crosses the
   /// bisector); on the outside, the corner itself. Beyond the ends the path goes on straight.
+  /// A neighbour must be nearer by `switch_tolerance` (1e-9 of the path's length): a node resting
+  /// on a vertex between two segments of different directions would otherwise take one or the
+  /// other on the round-off of its displacement, and with it a tangent and normal that differ by
+  /// the corner's angle (the 1- and 2-rank runs of an undamped wrap-around parted at once).
   Location nearest_point(const dealii::Point<dim> &x, unsigned int segment) const
   {
     const auto foot = [&](unsigned int j, double &distance) {
@@ -80,7 +85,7 @@ public:
     for (unsigned int j = segment; j > 0;)
       {
         const double s = foot(--j, distance);
-        if (!(distance < nearest))
+        if (!(distance < nearest - switch_tolerance()))
           break;
         nearest = distance, best = {s, j};
       }
@@ -88,7 +93,7 @@ public:
       for (unsigned int j = segment + 1; j < n_segments(); ++j)
         {
           const double s = foot(j, distance);
-          if (!(distance < nearest))
+          if (!(distance < nearest - switch_tolerance()))
             break;
           nearest = distance, best = {s, j};
         }

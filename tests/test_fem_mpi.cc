@@ -366,9 +366,9 @@ TEST(Mpi, EmbeddedSheetGivesTheSameResultOnTwoRanks)
 // 0-5 and 6-11), and its nodes change cells and owners as they slide. Every rank follows every
 // soil point and the owner is the rank of the cell with the smallest CellId, so 2 ranks give the
 // 1-rank run but for the round-off that the damping's and the slider's switches amplify: the
-// documented 3e-4 of T_max for the damped sheet (fem/README.md). Measured: 7.4e-5 of T_max, the soil
-// points to 1.2e-6 m. (Undamped, unlike the run-out, which agrees to 4e-10, the wrap-around's two
-// runs part from round-off at once and reach 3 % of T_max by 8 mm; not understood, see README.)
+// documented 3e-4 of T_max for the damped sheet (fem/README.md). Measured: 7.6e-5 of T_max, the soil
+// points to 3.7e-7 m. (Undamped, unlike the run-out, which agrees to 4e-10, the wrap-around's two
+// runs part from round-off at once and reach 0.6 % of T_max by 8 mm; not understood, see README.)
 TEST(Mpi, WrapAroundSlidesRoundItsCornersAlikeOnTwoRanks)
 {
   PulloutProblemParameters p = geohybrid::fem::testing::small_wrap_around_tank(0.004);

@@ -186,7 +186,7 @@ TEST(PulloutProblem, WritesSnapshotsAtTheirInterval)
 // still there: each node that reaches a corner loads the soil inside the bend, the arcs' cells go
 // into tension (the interface's tau is 0 on some of them) and the upper part's rise above the
 // geostatic value, and the curve swings with a period of about the node spacing. Measured, 15 to
-// 30 mm: mean +0.7 % of T_lim, between -10 % and +15 %; the lower part alone would hold 0.58 T_lim.
+// 30 mm: mean +0.6 % of T_lim, between -10 % and +15 %; the lower part alone would hold 0.58 T_lim.
 TEST(PulloutProblem, WrapAroundReachesTheInterfaceLimitOfItsThreeParts)
 {
   const auto p = small_wrap_around_tank(0.004);

@@ -223,21 +223,22 @@ struct BentSheetBlock
 };
 } // namespace
 
-// Large slip: pulled 40 mm at its clamp, the sheet slides round its corner (a quarter circle of
-// 25 mm radius, four segments): nodes that started on the corner or the vertical part reach the
-// corner or the horizontal part, and meet the soil there, along its direction. The normal force on
-// every node stays that of the tension turning round its share of the arc (2 T sin(11.25 deg) =
-// 0.39 T for a quarter circle of four segments), and the pull reaches the interface limit of the
-// sheet's length with the normal stress sigma_0 (no corner term: the law adds none). Measured:
-// largest normal force 0.21 T_max (0.23 of the limit), the last 10 mm's mean clamp force +9.6 % over the limit (the
-// block's fixed walls: the soil dragged towards the clamp raises the normal stress there, the
-// first nodes' tau is 5 % above tan(delta) sigma_0; the corner's tension rises by a few %).
+// Large slip: pulled 40 mm at its clamp, the sheet slides round its corner (a quarter circle of 25
+// mm radius, four segments): nodes that started on the corner or the vertical part reach the corner
+// or the horizontal part, and meet the soil there, along its direction. The normal force on every
+// node stays that of the tension turning round its share of the arc (2 T sin(11.25 deg) = 0.39 T
+// for a quarter circle of four segments), and the pull reaches the interface limit of the sheet's
+// length with the normal stress sigma_0 (no corner term: the law adds none). Measured: largest
+// normal force 0.22 T_max (0.24 of the limit), the last 10 mm's mean clamp force +9.2 % over the
+// limit (the block's fixed walls: the soil dragged towards the clamp raises the normal stress
+// there, the first nodes' tau is 5 % above tan(delta) sigma_0; the corner's tension rises by a few
+// %).
 // The small-slip tie (each node against the soil at its reference point, along its reference
-// direction) fails the force, plateau and slide checks: emulated in this interface (soil points held at the
-// nodes' reference points, slip from the gap's increment along the node's reference tangent, which
-// gives back the old run-out plateau, 19,400 N/m on the small tank), the last 10 mm's mean clamp
-// force was 74 kN/m (4.0 times the limit, rising), the node that started on the arc was still
-// there, and the largest normal force reached 32 kN/m (1.7 times the limit).
+// direction) fails the force, plateau and slide checks: emulated in this interface (soil points
+// held at the nodes' reference points, slip from the gap's increment along the node's reference
+// tangent, which gives back the old run-out plateau, 19,400 N/m on the small tank), the last 10
+// mm's mean clamp force was 74 kN/m (4.0 times the limit, rising), the node that started on the arc
+// was still there, and the largest normal force reached 32 kN/m (1.7 times the limit).
 TEST(SlidingSheetInterface, NodeSlidesRoundACornerWithABoundedNormalForce)
 {
   BentSheetBlock block(0.1, 0.025, 4);
