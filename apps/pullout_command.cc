@@ -89,8 +89,8 @@ void declare_pullout_parameters(ParameterHandler &prm)
 
   prm.enter_subsection("Anchorage");
   prm.declare_entry("type", "simple run-out", Patterns::Selection("simple run-out|wrap-around"),
-                    "Simple run-out (L, H) or wrap-around (L, D1, D2, B, H = D1 + D2), section 2.2; fem mode takes the "
-                    "simple run-out only [-]");
+                    "Simple run-out (L, H) or wrap-around (L, D1, D2, B, H = D1 + D2), section 2.2; fem mode lays the "
+                    "wrap-around's corners as arcs of twice 'Continuum/sheet node spacing' [-]");
   prm.declare_entry("H", text(g.cover), Patterns::Double(1e-6), "Soil above the lower part of the sheet [m]");
   prm.declare_entry("L", text(g.anchorage_length), Patterns::Double(1e-6),
                     "Length of the lower part of the sheet in the soil, from the front wall [m]");

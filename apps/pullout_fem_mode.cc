@@ -109,14 +109,16 @@ ContinuumInput parse_continuum(ParameterHandler &prm, const PullOutInput &in, co
   ContinuumInput c;
   fem::PulloutProblemParameters &p = c.problem;
   const dem::PullOutGeometry &g = in.tank.geometry;
-  if (g.anchorage == dem::Anchorage::wrap_around)
-    throw std::invalid_argument(
-      where + ": 'Anchorage/type' = wrap-around is not available in fem mode (use 'set mode = dem'): the "
-              "continuum's sheet interface ties each node to the soil at its starting point along its starting "
-              "direction, so a node that slides round a corner of the sheet is pushed into the soil and the head "
-              "tension rises without a plateau (fem/README.md, Known limits)");
   p.sheet_length = g.anchorage_length;
   p.sheet_depth = g.cover;
+  // The wrap-around as the DEM lays it (dem/pullout_tank.cc): up D1 from the lower part's end,
+  // then B back towards the front wall; H = D1 + D2 is checked with the geometry.
+  p.wrap_around = g.anchorage == dem::Anchorage::wrap_around;
+  if (p.wrap_around)
+    {
+      p.return_height = g.return_height;
+      p.upper_length = g.upper_length;
+    }
   p.soil_density = in.tank.unit_weight / p.gravity;
   p.sheet.axial_stiffness = in.tank.sheet.axial_stiffness;
   p.sheet.areal_mass = in.tank.sheet.areal_mass;

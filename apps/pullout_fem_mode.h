@@ -8,15 +8,15 @@
 // converged point and writes no summary.json.
 //
 // What the two modes share keeps its meaning: Tank/length and fill height are the soil's extent,
-// Anchorage (simple run-out: L, H) the sheet, Sheet/J, areal mass and Interface/friction angle the
+// Anchorage (simple run-out: L, H; wrap-around: L, D1, D2, B) the sheet, Sheet/J, areal mass and Interface/friction angle the
 // truss and its interface, Soil/unit weight the density, Pull (rate, ramp, final displacement,
 // record interval, tension profiles) the clamp's programme and the curve's points,
 // Output/experimental T_max the plot's line. What only the continuum needs is in subsection
 // Continuum (mesh, the sheet's node spacing, element degree, soil model with E, nu, phi, c, psi,
 // K0, damping, the interface's stiffnesses and cohesion). DEM-only entries (Filling, Soil/Particle
 // contact, wall friction, clamp offset, thickness, segment length, the sheet's contact
-// stiffnesses) are read but unused; their doc strings say so. A wrap-around is refused: the
-// continuum's interface cannot let a node slide round a corner (fem/README.md, Known limits).
+// stiffnesses) are read but unused; their doc strings say so. A wrap-around's two corners are
+// laid as arcs of twice the node spacing inside the sharp corners (fem/pullout_problem.h).
 //
 // Runs on any number of MPI ranks (mpirun -np N geohybrid pullout FILE.prm); rank 0 writes every
 // file, through the same PulloutOutput as the DEM mode.

@@ -22,6 +22,24 @@ void PulloutProblemParameters::validate(const std::string &where) const
   positive(sheet_length, "sheet length L", "[m]");
   positive(sheet_depth, "sheet depth H", "[m]");
   positive(sheet_node_spacing, "sheet node spacing", "[m]");
+  if (wrap_around)
+    {
+      positive(return_height, "return height D1", "[m]");
+      require_parameter(return_height < sheet_depth, where, "return height D1", return_height,
+                        "must be less than the sheet depth H = " + std::to_string(sheet_depth) +
+                          " m: the upper part would be at or above the soil's surface [m]");
+      positive(upper_length, "upper length B", "[m]");
+      require_parameter(wrap_corner_radius >= 0.0 && 2.0 * corner_radius() <= return_height &&
+                          corner_radius() < upper_length,
+                        where, "wrap corner radius", wrap_corner_radius,
+                        "must be zero (automatic: twice the sheet node spacing, " +
+                          std::to_string(2.0 * sheet_node_spacing) +
+                          " m) or positive, and leave the radius at most D1 / 2 and less than B [m]");
+      require_parameter(upper_length < sheet_length, where, "upper length B", upper_length,
+                        "must be shorter than L = " + std::to_string(sheet_length) +
+                          " m: the upper part runs back from the return towards the front wall and would leave "
+                          "the tank [m]");
+    }
   require_parameter(element_degree == 1 || element_degree == 2, where, "element degree", element_degree,
                     "must be 1 (Q1) or 2 (Q2)");
   positive(soil_density, "soil density", "[kg/m^3]");
@@ -48,24 +66,57 @@ void PulloutProblemParameters::validate(const std::string &where) const
 
 namespace
 {
-/// The straight parts of the sheet from the clamp, each divided into segments of at most
-/// `spacing`; returns the nodes, and sets `lower_part_end` to the node at the lower part's end.
+/// The sheet from the clamp through `corners`: straight parts divided into segments of at most
+/// `spacing`, and every interior corner rounded by an arc of radius `radius` (divided likewise,
+/// into at least two segments) that meets the straight parts tangentially, inside the corner;
+/// returns the nodes, and sets `lower_part_end` to the node where the first straight part ends.
 std::vector<dealii::Point<dim>> sheet_nodes(const std::vector<dealii::Point<dim>> &corners, double spacing,
-                                            std::size_t &lower_part_end)
+                                            double radius, std::size_t &lower_part_end)
 {
   std::vector<dealii::Point<dim>> nodes{corners.front()};
-  for (std::size_t c = 0; c + 1 < corners.size(); ++c)
+  const auto straight_to = [&](const dealii::Point<dim> &to) {
+    const dealii::Point<dim> from = nodes.back();
+    const auto n = static_cast<unsigned int>(std::max(1.0, std::ceil(from.distance(to) / spacing * (1.0 - 1e-12))));
+    for (unsigned int k = 1; k <= n; ++k)
+      nodes.push_back(from + (to - from) * (static_cast<double>(k) / n));
+  };
+  for (std::size_t c = 1; c + 1 < corners.size(); ++c)
     {
-      const double length = corners[c].distance(corners[c + 1]);
-      const auto n = static_cast<unsigned int>(std::max(1.0, std::ceil(length / spacing * (1.0 - 1e-12))));
-      for (unsigned int k = 1; k <= n; ++k)
-        nodes.push_back(corners[c] + (corners[c + 1] - corners[c]) * (static_cast<double>(k) / n));
-      if (c == 0)
+      const dealii::Tensor<1, dim> in = (corners[c] - corners[c - 1]) / corners[c].distance(corners[c - 1]);
+      const dealii::Tensor<1, dim> out = (corners[c + 1] - corners[c]) / corners[c + 1].distance(corners[c]);
+      const double turn = std::atan2(in[0] * out[1] - in[1] * out[0], in * out); // signed, left positive
+      const double setback = radius * std::tan(0.5 * std::abs(turn));
+      straight_to(corners[c] - setback * in);
+      if (c == 1)
         lower_part_end = nodes.size() - 1;
+      if (radius > 0.0 && turn != 0.0)
+        {
+          const dealii::Tensor<1, dim> left({-in[1], in[0]});
+          const dealii::Point<dim> centre = nodes.back() + (turn > 0.0 ? radius : -radius) * left;
+          const dealii::Tensor<1, dim> arm = nodes.back() - centre;
+          const auto n = static_cast<unsigned int>(
+            std::max(2.0, std::ceil(radius * std::abs(turn) / spacing * (1.0 - 1e-12))));
+          for (unsigned int k = 1; k <= n; ++k)
+            {
+              const double a = turn * k / n;
+              nodes.push_back(centre + dealii::Tensor<1, dim>({std::cos(a) * arm[0] - std::sin(a) * arm[1],
+                                                               std::sin(a) * arm[0] + std::cos(a) * arm[1]}));
+            }
+        }
     }
+  straight_to(corners.back());
+  if (corners.size() == 2)
+    lower_part_end = nodes.size() - 1;
   return nodes;
 }
 } // namespace
+
+double PulloutProblemParameters::corner_radius() const
+{
+  if (!wrap_around)
+    return 0.0;
+  return wrap_corner_radius > 0.0 ? wrap_corner_radius : 2.0 * sheet_node_spacing;
+}
 
 PulloutTankExtent pullout_tank_extent(const dealii::parallel::distributed::Triangulation<dim> &mesh,
                                       const PulloutProblemParameters &parameters, const std::string &where)
@@ -132,10 +183,17 @@ PulloutProblem::PulloutProblem(const dealii::parallel::distributed::Triangulatio
   geostatic_.validate(where + ": geostatic stress");
   solver_->set_initial_stress(geostatic_);
 
-  // The sheet from the front wall (node 0, the clamp) back over L at depth H.
+  // The sheet from the front wall (node 0, the clamp) back over L at depth H; a wrap-around goes
+  // on up D1 and forward over B at depth H - D1, as the DEM's (dem/pullout_tank.cc, sheet_corners).
   const double y_sheet = y_top_ - parameters_.sheet_depth, x_end = x_front_ - parameters_.sheet_length;
-  const std::vector<dealii::Point<dim>> corners{dealii::Point<dim>(x_front_, y_sheet), dealii::Point<dim>(x_end, y_sheet)};
-  const std::vector<dealii::Point<dim>> nodes = sheet_nodes(corners, parameters_.sheet_node_spacing, lower_part_end_);
+  std::vector<dealii::Point<dim>> corners{dealii::Point<dim>(x_front_, y_sheet), dealii::Point<dim>(x_end, y_sheet)};
+  if (parameters_.wrap_around)
+    {
+      const double y_upper = y_sheet + parameters_.return_height;
+      corners.emplace_back(x_end, y_upper);
+      corners.emplace_back(x_end + parameters_.upper_length, y_upper);
+    }
+  const std::vector<dealii::Point<dim>> nodes = sheet_nodes(corners, parameters_.sheet_node_spacing, parameters_.corner_radius(), lower_part_end_);
   arc_lengths_.assign(1, 0.0);
   for (std::size_t k = 1; k < nodes.size(); ++k)
     arc_lengths_.push_back(arc_lengths_.back() + nodes[k].distance(nodes[k - 1]));
@@ -143,8 +201,21 @@ PulloutProblem::PulloutProblem(const dealii::parallel::distributed::Triangulatio
   // What the interface would hold if the whole sheet slid with the soil at rest.
   const auto &interface = parameters_.sheet.interface;
   const double tan_delta = std::tan(degrees_to_radians(interface.friction_angle_deg));
-  const double sigma_v = -geostatic_.stress_at(0.5 * (corners[0] + corners[1]))[1][1];
-  geostatic_limit_ = 2.0 * (interface.cohesion + sigma_v * tan_delta) * parameters_.sheet_length;
+  // Per segment of the sheet as laid, the geostatic normal stress at its middle (exact on the
+  // straight parts, where it is linear; the arcs' chords to O(spacing^2)).
+  geostatic_limit_ = 0.0;
+  for (std::size_t k = 0; k + 1 < nodes.size(); ++k)
+    {
+      const double length = nodes[k].distance(nodes[k + 1]);
+      const dealii::Tensor<1, dim> along = (nodes[k + 1] - nodes[k]) / length;
+      const dealii::Tensor<1, dim> normal({-along[1], along[0]});
+      const StressTensor stress = geostatic_.stress_at(0.5 * (nodes[k] + nodes[k + 1]));
+      double sigma_n = 0.0; // compressive positive
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          sigma_n -= normal[i] * stress[i][j] * normal[j];
+      geostatic_limit_ += 2.0 * (interface.cohesion + sigma_n * tan_delta) * length;
+    }
   n_cells_ = mesh.n_global_active_cells();
 
   TrussSheetParameters sheet_parameters = parameters_.sheet;
@@ -243,7 +314,11 @@ PulloutResult PulloutProblem::run(const CurveObserver &observer)
 void make_pullout_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,
                             double cell_size, const PulloutProblemParameters &p, const std::string &where)
 {
-  make_tank_mesh(mesh, length, height, cell_size, {}, {height - p.sheet_depth}, where);
+  if (!p.wrap_around)
+    make_tank_mesh(mesh, length, height, cell_size, {}, {height - p.sheet_depth}, where);
+  else
+    make_tank_mesh(mesh, length, height, cell_size, {length - p.sheet_length},
+                   {height - p.sheet_depth, height - p.sheet_depth + p.return_height}, where);
 }
 
 void make_rectangular_tank(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,

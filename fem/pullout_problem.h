@@ -11,10 +11,11 @@
 //   carries the surcharge q as a pressure;
 // - the sheet (fem/truss_sheet.h) lies at depth H below the top, from the front wall back into the
 //   tank over its length L, tied to the soil by the Mohr-Coulomb interface of
-//   fem/sheet_interface.h; its node at the front wall is the clamp. (No wrap-around: the
-//   interface ties each node to the soil at its reference point with its reference tangent, so a
-//   node that slides past a corner of the sheet is pushed into the soil by the normal penalty and
-//   the head tension rises without a plateau; see fem/README.md, Known limits.)
+//   fem/sheet_interface.h; its node at the front wall is the clamp. A wrap-around (as the DEM's,
+//   dem/pullout_tank.cc, PullOutGeometry::sheet_corners) goes on from the lower part's end up a
+//   vertical return of D1 and back towards the front wall over an upper part of B at depth
+//   H - D1 (= D2); the interface follows each node's slip along that path, round the corners
+//   (fem/sheet_interface.h);
 // - the clamp moves in +x at a constant rate, reached over a ramp (the pull), the soil and sheet are integrated by
 //   central differences with local damping (a quasi-static run: the rate and the damping are
 //   chosen so that halving the rate leaves the curve unchanged, tests/test_fem_pullout.cc);
@@ -49,10 +50,22 @@ struct PulloutProblemParameters
   double sheet_length = 1.0;         ///< L, from the front wall into the tank, in (0, tank length] [m]
   double sheet_depth = 0.4;          ///< H, below the top surface, in (0, tank height) [m]
   double sheet_node_spacing = 0.0125; ///< the truss segments' length at most, > 0 [m]
-//   fem/sheet_interface.h; its node at the front wall is the clamp. (No wrap-around: the
-//   interface ties each node to the soil at its reference point with its reference tangent, so a
-//   node that slides past a corner of the sheet is pushed into the soil by the normal penalty and
-//   the head tension rises without a plateau; see fem/README.md, Known limits.)
+  /// A wrap-around anchorage: from the lower part's far end, a vertical return of D1 upwards and
+  /// an upper part of B back towards the front wall, at depth H - D1.
+  bool wrap_around = false;
+  double return_height = 0.0; ///< D1, wrap-around only, in (0, H) [m]
+  double upper_length = 0.0;  ///< B, wrap-around only, in (0, L) [m]
+  /// The wrap-around's two corners are laid as arcs of this radius inside the sharp corners of
+  /// L, D1, B (each straight part ends r short of its corner; the sheet is (4 - pi) r shorter
+  /// than L + D1 + B), at most D1 / 2; 0 takes twice the node spacing, an arc of four segments.
+  /// Why: at a sharp corner the segments on either side of it cut across the corner, and the
+  /// nodes beside it, each held along the normal of its own part, balance their tension only by
+  /// the component along that part: the L-shaped sheet of test_fem_sheet.cc held +57 % over its
+  /// interface limit with a sharp corner, +9.2 % rounded over 4 segments (fem/README.md). [m]
+  double wrap_corner_radius = 0.0;
+  /// The corners' radius used: wrap_corner_radius, or twice the node spacing if it is 0 (0 for
+  /// a run-out) [m].
+  double corner_radius() const;
 
   // Soil.
   SoilParameters soil;
@@ -100,7 +113,11 @@ struct PulloutResult
   double max_head_tension = 0.0;        ///< T_max over the curve [N/m]
   double vertical_stress_at_sheet = 0.0; ///< geostatic sigma_v = q + gamma H, compressive positive [Pa]
   /// 2 (c_i + sigma_v tan(delta)) L with the geostatic sigma_v at the sheet: the head tension
-  /// if the whole sheet slid with the soil at rest [N/m].
+  /// if the whole sheet slid with the soil at rest [N/m]. For a wrap-around, the sum over the
+  /// sheet's segments as laid of 2 (c_i + sigma_n tan(delta)) times their length, sigma_n the
+  /// geostatic normal stress on the segment at its middle (sigma_v on the lower and upper parts,
+  /// K0 sigma_v on the return, in between on the arcs); no term for the corners' own normal
+  /// force, which the interface law does not add to their strength (fem/sheet_interface.h).
   double geostatic_interface_limit = 0.0;
   unsigned int n_cells = 0;             ///< of the soil mesh, on all ranks
   double tank_length = 0.0, tank_height = 0.0; ///< from the mesh [m]
@@ -133,7 +150,8 @@ public:
   const ExplicitSolver &solver() const { return *solver_; }
   double tank_length() const { return tank_length_; } ///< from the mesh [m]
   double tank_height() const { return tank_height_; } ///< from the mesh [m]
-  /// Sheet node 0 is the clamp at the front wall; this one is the far end of the lower part.
+  /// Sheet node 0 is the clamp at the front wall; this one is the far end of the lower part (for a
+  /// wrap-around, the lower corner).
   std::size_t lower_part_end() const { return lower_part_end_; }
   /// Distance of each sheet node from the clamp along the sheet, as laid [m].
   const std::vector<double> &arc_lengths() const { return arc_lengths_; }
@@ -154,7 +172,8 @@ private:
 };
 
 /// The generated tank for `parameters` (fem/tank_mesh.h, make_tank_mesh): [0, length] x
-/// [0, height] of cells of about `cell_size`, a row of them centred on the sheet. Throws std::invalid_argument naming `where` and 'cell
+/// [0, height] of cells of about `cell_size`, a row of them centred on the sheet (for a
+/// wrap-around, a row on each of its lower and upper parts and a column on its return). Throws std::invalid_argument naming `where` and 'cell
 /// size' if the sheet lies too close to the bottom or the top for it. Collective.
 void make_pullout_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, double length, double height,
                             double cell_size, const PulloutProblemParameters &parameters, const std::string &where);
@@ -167,7 +186,7 @@ struct PulloutTankExtent
 };
 
 /// The tank of `mesh`; throws std::invalid_argument naming `where` and the parameter if the sheet
-/// of `parameters` (L, H) does not fit in it. Both pull-outs (explicit and implicit) use it. Collective.
+/// of `parameters` (L, H; a wrap-around's D1 and B) does not fit in it. Both pull-outs (explicit and implicit) use it. Collective.
 PulloutTankExtent pullout_tank_extent(const dealii::parallel::distributed::Triangulation<dim> &mesh,
                                       const PulloutProblemParameters &parameters, const std::string &where);
 

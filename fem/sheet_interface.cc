@@ -6,6 +6,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/grid/grid_tools.h>
 
+#include <array>
+
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -95,9 +97,200 @@ double sheet_normal_stress(MaterialPointHistory &material_points, const SheetSoi
   return sigma_nn / points.size();
 }
 
+namespace
+{
+using SheetSoilCell = dealii::DoFHandler<dim>::cell_iterator;
+
+/// A point within this distance of a unit cell's side, in unit coordinates, is on it (the
+/// tolerance of GridTools::find_all_active_cells_around_point in locate_sheet_in_soil).
+constexpr double sheet_cell_tolerance = 1e-10;
+
+/// The coordinates of `p` in the unit cell of `cell`: in closed form on a parallelogram (the
+/// generated tanks and the structured blocks of meshes/), by the mapping's inverse otherwise.
+/// False if the inverse fails (a point far outside a distorted cell).
+bool sheet_unit_point(const dealii::Mapping<dim> &mapping, const SheetSoilCell &cell, const dealii::Point<dim> &p,
+                      dealii::Point<dim> &unit)
+{
+  const dealii::Point<dim> v0 = cell->vertex(0);
+  const dealii::Tensor<1, dim> a = cell->vertex(1) - v0, b = cell->vertex(2) - v0;
+  const dealii::Tensor<1, dim> warp = cell->vertex(3) - cell->vertex(1) - b;
+  if (warp.norm() <= 1e-12 * (a.norm() + b.norm()))
+    {
+      const dealii::Tensor<1, dim> d = p - v0;
+      const double det = a[0] * b[1] - a[1] * b[0];
+      unit = dealii::Point<dim>((d[0] * b[1] - d[1] * b[0]) / det, (a[0] * d[1] - a[1] * d[0]) / det);
+      return true;
+    }
+  try
+    {
+      unit = mapping.transform_real_to_unit_cell(cell, p);
+      return true;
+    }
+  catch (...)
+    {
+      return false;
+    }
+}
+
+bool sheet_unit_point_inside(const dealii::Point<dim> &unit)
+{
+  for (unsigned int d = 0; d < dim; ++d)
+    if (unit[d] < -sheet_cell_tolerance || unit[d] > 1.0 + sheet_cell_tolerance)
+      return false;
+  return true;
+}
+
+/// From `cell` (any level; a point's last cell, or a coarse cell), the active cell holding `p`:
+/// down into the children that hold it, and across the face beyond which it lies. False if the
+/// walk leaves the mesh or takes more than `max_moves` cells.
+bool walk_to_sheet_cell(const dealii::Mapping<dim> &mapping, SheetSoilCell &cell, const dealii::Point<dim> &p,
+                        dealii::Point<dim> &unit, unsigned int max_moves)
+{
+  for (unsigned int move = 0; move <= max_moves; ++move)
+    {
+      const bool mapped = sheet_unit_point(mapping, cell, p, unit);
+      if (mapped && sheet_unit_point_inside(unit))
+        {
+          if (cell->is_active())
+            return true;
+          // The child holding p, or else the one whose centre is nearest (the walk goes on from it).
+          SheetSoilCell next = cell->child(0);
+          double nearest = std::numeric_limits<double>::max();
+          for (unsigned int c = 0; c < cell->n_children(); ++c)
+            {
+              dealii::Point<dim> child_unit;
+              if (sheet_unit_point(mapping, cell->child(c), p, child_unit) && sheet_unit_point_inside(child_unit))
+                {
+                  next = cell->child(c);
+                  break;
+                }
+              const double distance = cell->child(c)->center().distance(p);
+              if (distance < nearest)
+                {
+                  nearest = distance;
+                  next = cell->child(c);
+                }
+            }
+          cell = next;
+          continue;
+        }
+      // Across the face p lies farthest beyond (faces 2d and 2d + 1 are unit[d] = 0 and 1), or,
+      // without unit coordinates, the face nearest to p.
+      unsigned int face = 0;
+      if (mapped)
+        {
+          double beyond = 0.0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              if (-unit[d] > beyond)
+                beyond = -unit[d], face = 2 * d;
+              if (unit[d] - 1.0 > beyond)
+                beyond = unit[d] - 1.0, face = 2 * d + 1;
+            }
+        }
+      else
+        {
+          double nearest = std::numeric_limits<double>::max();
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->center().distance(p) < nearest)
+              nearest = cell->face(f)->center().distance(p), face = f;
+        }
+      if (cell->at_boundary(face))
+        return false;
+      cell = cell->neighbor(face);
+    }
+  return false;
+}
+
+/// The cells around a point on cell edges, with no allocation: at most a handful.
+struct SheetCellsAround
+{
+  std::array<SheetSoilCell, 16> cells;
+  std::array<dealii::Point<dim>, 16> units;
+  unsigned int n = 0;
+  void add(const SheetSoilCell &cell, const dealii::Point<dim> &unit)
+  {
+    for (unsigned int i = 0; i < n; ++i)
+      if (cells[i] == cell)
+        return;
+    if (n < cells.size())
+      cells[n] = cell, units[n++] = unit;
+  }
+};
+
+/// Adds the active cells of `cell` (itself or its descendants) that hold p.
+void add_active_sheet_cells(const dealii::Mapping<dim> &mapping, const SheetSoilCell &cell, const dealii::Point<dim> &p,
+                            SheetCellsAround &around)
+{
+  dealii::Point<dim> unit;
+  if (!sheet_unit_point(mapping, cell, p, unit) || !sheet_unit_point_inside(unit))
+    return;
+  if (cell->is_active())
+    around.add(cell, unit);
+  else
+    for (unsigned int c = 0; c < cell->n_children(); ++c)
+      add_active_sheet_cells(mapping, cell->child(c), p, around);
+}
+
+/// The active cell that holds p with the smallest CellId, from `cell` which holds it (at `unit`):
+/// a point on an edge or a vertex touches several cells, and the choice must not depend on the
+/// partition. The cells are found across the faces p lies on, from cell to cell.
+SheetSoilCell smallest_id_sheet_cell(const dealii::Mapping<dim> &mapping, const SheetSoilCell &cell,
+                                     const dealii::Point<dim> &p, dealii::Point<dim> &unit)
+{
+  const auto on_side = [](const dealii::Point<dim> &u, unsigned int face) {
+    const double coordinate = u[face / 2];
+    return face % 2 == 0 ? coordinate <= sheet_cell_tolerance : coordinate >= 1.0 - sheet_cell_tolerance;
+  };
+  bool on_an_edge = false;
+  for (unsigned int f = 0; f < 2 * dim; ++f)
+    on_an_edge = on_an_edge || on_side(unit, f);
+  if (!on_an_edge)
+    return cell;
+  SheetCellsAround around;
+  around.add(cell, unit);
+  for (unsigned int i = 0; i < around.n; ++i)
+    for (unsigned int f = 0; f < 2 * dim; ++f)
+      if (on_side(around.units[i], f) && !around.cells[i]->at_boundary(f))
+        add_active_sheet_cells(mapping, around.cells[i]->neighbor(f), p, around);
+  unsigned int chosen = 0;
+  for (unsigned int i = 1; i < around.n; ++i)
+    if (around.cells[i]->id() < around.cells[chosen]->id())
+      chosen = i;
+  unit = around.units[chosen];
+  return around.cells[chosen];
+}
+
+/// The active cell holding p with the smallest CellId, searched from the coarse cells (every rank
+/// has the whole coarse mesh, so every rank finds the same); false if p is outside the mesh.
+bool find_sheet_cell(const DisplacementSpace &space, const dealii::Point<dim> &p, SheetSoilCell &cell,
+                     dealii::Point<dim> &unit)
+{
+  const auto &dofs = space.dof_handler();
+  for (auto coarse = dofs.begin(0); coarse != dofs.end(0); ++coarse)
+    {
+      if (!sheet_unit_point(space.mapping(), coarse, p, unit) || !sheet_unit_point_inside(unit))
+        continue;
+      cell = coarse;
+      if (walk_to_sheet_cell(space.mapping(), cell, p, unit, 8))
+        {
+          cell = smallest_id_sheet_cell(space.mapping(), cell, p, unit);
+          return true;
+        }
+    }
+  return false;
+}
+} // namespace
+
 EmbeddedSheet::EmbeddedSheet(const DisplacementSpace &space, const TrussSheet &sheet, std::vector<SheetClamp> clamps,
                              const std::string &where)
-  : space_(space), sheet_(sheet), clamps_(std::move(clamps))
+  : space_(space), sheet_(sheet), path_([&] {
+    std::vector<dealii::Point<dim>> nodes;
+    for (std::size_t k = 0; k < sheet.n_nodes(); ++k)
+      nodes.push_back(sheet.node(k));
+    return nodes;
+  }()),
+    clamps_(std::move(clamps))
 {
   const std::size_t n = sheet_.n_nodes();
   clamped_.assign(n, false);
@@ -112,10 +305,74 @@ EmbeddedSheet::EmbeddedSheet(const DisplacementSpace &space, const TrussSheet &s
   velocity_.assign(n, Force());
   truss_force_.assign(n, Force());
   interface_force_.assign(n, Force());
-  committed_gap_.assign(n, Force());
   shear_stress_.assign(n, 0.0);
+  shared_.assign(5 * n, 0.0);
 
-  soil_points_ = locate_sheet_in_soil(space_, sheet_, where);
+  const auto &fe = space_.fe();
+  for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+    components_.push_back(fe.system_to_component_index(i).first);
+  soil_points_.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+    {
+      SlidingSoilPoint &p = soil_points_[k];
+      // A node starts at its own point; on a corner, on the segment towards the clamp, where a
+      // pull takes it.
+      p.arc_length = path_.vertex_arc_length(k);
+      p.segment = k > 0 ? static_cast<unsigned int>(k - 1) : 0;
+      p.shape_values.resize(fe.n_dofs_per_cell());
+      p.dof_indices.resize(fe.n_dofs_per_cell());
+      p.material_points.reserve(space_.cell_quadrature().size());
+      SheetSoilCell cell;
+      dealii::Point<dim> unit;
+      if (!find_sheet_cell(space_, sheet_.node(k), cell, unit))
+        {
+          std::ostringstream message;
+          message << where << ": node " << k << " at (" << sheet_.node(k)[0] << ", " << sheet_.node(k)[1]
+                  << ") m lies outside the soil mesh";
+          throw std::invalid_argument(message.str());
+        }
+      set_soil_cell(p, cell, unit);
+    }
+}
+
+void EmbeddedSheet::set_soil_cell(SlidingSoilPoint &p, const dealii::DoFHandler<dim>::cell_iterator &cell,
+                                  const dealii::Point<dim> &unit_point)
+{
+  if (p.cell.state() != dealii::IteratorState::valid || cell != p.cell)
+    {
+      p.cell = cell;
+      p.owned = cell->is_locally_owned();
+      // The DoFs and the material points are fetched where the forces are computed (they need
+      // the soil's history): mark them stale.
+      p.material_points.clear();
+    }
+  if (!p.owned)
+    return;
+  const auto &fe = space_.fe();
+  for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+    p.shape_values[i] = fe.shape_value(i, unit_point);
+}
+
+void EmbeddedSheet::move_soil_point(std::size_t k, double s, unsigned int segment)
+{
+  SlidingSoilPoint &p = soil_points_[k];
+  p.arc_length = s;
+  p.segment = segment;
+  const dealii::Point<dim> x = path_.point(path_.clamped(s), p.segment);
+  SheetSoilCell cell = p.cell;
+  dealii::Point<dim> unit;
+  // A step moves a point by a small part of a cell: a few neighbours suffice; the search from the
+  // coarse cells is the fallback (a point that crossed a region this rank only has coarse).
+  if (walk_to_sheet_cell(space_.mapping(), cell, x, unit, 8))
+    cell = smallest_id_sheet_cell(space_.mapping(), cell, x, unit);
+  else if (!find_sheet_cell(space_, x, cell, unit))
+    {
+      std::ostringstream message;
+      message << "sheet: the soil point of node " << k << " slid to (" << x[0] << ", " << x[1]
+              << ") m, outside the soil mesh (the sheet's reference path leaves the mesh between its nodes)";
+      throw std::runtime_error(message.str());
+    }
+  set_soil_cell(p, cell, unit);
 }
 
 double EmbeddedSheet::stable_time_step() const
@@ -142,39 +399,59 @@ void EmbeddedSheet::compute_forces(const Vector &soil_displacement, MaterialPoin
 {
   const std::size_t n = sheet_.n_nodes();
   const SheetInterfaceLaw law(sheet_.parameters().interface);
-  // Packed for one MPI sum: the interface force (2 per node), then tau (1 per node).
-  std::vector<double> shared(3 * n, 0.0);
+  // Packed for one MPI sum: the interface force (2 per node), tau (1 per node), the soil point's
+  // new arc length and segment (1 and 1 per node); each from the node's owner, zero elsewhere.
+  std::fill(shared_.begin(), shared_.end(), 0.0);
   for (std::size_t k = 0; k < n; ++k)
     {
-      const auto &p = soil_points_[k];
+      SlidingSoilPoint &p = soil_points_[k];
       if (!p.owned)
         continue;
+      if (p.material_points.empty()) // a new cell: its DoFs and points
+        {
+          p.cell->get_dof_indices(p.dof_indices);
+          for (const auto &point : material_points.at(p.cell))
+            p.material_points.push_back(point.get());
+        }
       Force soil_u;
       for (unsigned int i = 0; i < p.dof_indices.size(); ++i)
-        soil_u[p.components[i]] += p.shape_values[i] * soil_displacement[p.dof_indices[i]];
-      const Force gap = displacement_[k] - soil_u;
-      const Force t = sheet_.tangent(k);
-      const Force normal({-t[1], t[0]});
+        soil_u[components_[i]] += p.shape_values[i] * soil_displacement[p.dof_indices[i]];
+      // The node's soil point moves to the foot of the node on the path, the path displaced with
+      // the soil (by the displacement at the last point: the soil's strain over a step's slip is
+      // negligible); the slip is the distance it moved along the path, and the gap what is left,
+      // along the normal of the part it is on. Beyond the path's ends, the path goes on straight
+      // and the soil is that at the end.
+      const dealii::Point<dim> node = sheet_.node(k) + displacement_[k] - soil_u;
+      const SheetPath::Location foot = path_.nearest_point(node, p.segment);
+      const Force t = path_.tangent(foot.segment), normal = path_.normal(foot.segment);
+      const double gap_n = (node - path_.point(foot.arc_length, foot.segment)) * normal;
       const double L = sheet_.tributary_length(k);
 
-      const double sigma_nn = sheet_normal_stress(material_points, p, normal);
-      const double slip_increment = (gap - committed_gap_[k]) * t;
+      double sigma_nn = 0.0;
+      for (const MaterialPoint *point : p.material_points)
+        sigma_nn += normal * (in_plane_part(point->stress) * normal);
+      sigma_nn /= p.material_points.size();
+      const double slip_increment = foot.arc_length - p.arc_length;
       const double tau = law.shear(shear_stress_[k], slip_increment, sigma_nn).shear_stress;
-      committed_gap_[k] = gap;
 
-      const Force force = -2.0 * L * (tau * t + law.normal_stiffness() * (gap * normal) * normal);
-      shared[2 * k] = force[0];
-      shared[2 * k + 1] = force[1];
-      shared[2 * n + k] = tau;
-      // The soil feels -force at X_k: its internal force (f_int, resisting) gains +force N_i.
+      const Force force = -2.0 * L * (tau * t + law.normal_stiffness() * gap_n * normal);
+      shared_[2 * k] = force[0];
+      shared_[2 * k + 1] = force[1];
+      shared_[2 * n + k] = tau;
+      shared_[3 * n + k] = foot.arc_length;
+      shared_[4 * n + k] = foot.segment;
+      // The soil feels -force at P(s_k): its internal force (f_int, resisting) gains +force N_i.
       for (unsigned int i = 0; i < p.dof_indices.size(); ++i)
-        soil_internal_force[p.dof_indices[i]] += force[p.components[i]] * p.shape_values[i];
+        soil_internal_force[p.dof_indices[i]] += force[components_[i]] * p.shape_values[i];
     }
-  dealii::Utilities::MPI::sum(shared, space_.communicator(), shared);
+  dealii::Utilities::MPI::sum(shared_, space_.communicator(), shared_);
   for (std::size_t k = 0; k < n; ++k)
     {
-      interface_force_[k] = Force({shared[2 * k], shared[2 * k + 1]});
-      shear_stress_[k] = shared[2 * n + k];
+      interface_force_[k] = Force({shared_[2 * k], shared_[2 * k + 1]});
+      shear_stress_[k] = shared_[2 * n + k];
+      // Every rank follows every node's point, with the same numbers: the owner may change.
+      if (shared_[3 * n + k] != soil_points_[k].arc_length)
+        move_soil_point(k, shared_[3 * n + k], static_cast<unsigned int>(shared_[4 * n + k]));
     }
   truss_force_ = sheet_.nodal_forces(displacement_);
 }

@@ -2,25 +2,60 @@
 // A truss sheet lying in the soil, tied to it by a zero-thickness Mohr-Coulomb interface on each of
 // its two faces, for the explicit solver (forces only).
 //
-// Each sheet node k stands for a length L_k of sheet (truss_sheet.h). It sits at the reference
-// point X_k inside a soil cell (found once with GridTools::find_all_active_cells_around_point; the
-// soil's shape functions N_i(X_k) are stored), and its relative displacement to the soil there,
-// g = u_k - sum_i N_i u_i, is split along the sheet's unit tangent t and normal n:
-// - normal: a penalty spring per face, F_n = -2 k_n (g.n) L_k n, ties the sheet to the soil
-//   (soil on both faces: no opening);
+// Each sheet node k stands for a length L_k of sheet (truss_sheet.h). Large slip: the node is
+// compared with the soil at a point of the sheet's reference path (sheet_path.h, the polyline of
+// the nodes as laid), at arc length s_k, which follows the node: every step s_k moves to the foot
+// of the node on the path displaced with the soil (SheetPath::nearest_point, searched from the
+// segment it was on), so a node that slides round a corner of a wrap-around meets the soil of the
+// part it has reached, along that part's tangent t and normal n. With P(s) the path's point and
+// u_s = sum_i N_i(P(s_k)) u_i the soil's displacement there:
+// - normal: a penalty spring per face, F_n = -2 k_n g_n L_k n, g_n = ((X_k + u_k - u_s) - P(s_k)).n
+//   the node's distance from the displaced path, ties the sheet to the soil (soil on both faces:
+//   no opening);
 // - shear: an elastic-perfectly-plastic slider per face with the Mohr-Coulomb limit
 //   |tau| <= c_i + max(0, -sigma_nn) tan(delta), sigma_nn = n.sigma.n the soil's normal stress on
-//   the sheet's plane (the mean over the quadrature points of the cell holding X_k; tension
-//   positive, so -sigma_nn is the confining pressure). tau is updated incrementally from the
-//   tangential slip increment and committed every step; F_t = -2 tau L_k t.
-// The soil receives -F at X_k through the N_i. At full sliding, a sheet of length L under a
-// uniform sigma_v holds T_max = 2 (c_i + sigma_v tan(delta)) L.
+//   the sheet's plane (the mean over the quadrature points of the cell holding P(s_k); tension
+//   positive, so -sigma_nn is the confining pressure). tau is updated incrementally from the slip
+//   of the step, ds = s_k,new - s_k (the distance the node moved along the path relative to the
+//   soil) and committed every step; F_t = -2 tau L_k t.
+// The soil receives -F at P(s_k) through the N_i. At full sliding, a straight sheet of length L
+// under a uniform sigma_v holds T_max = 2 (c_i + sigma_v tan(delta)) L. On a straight sheet this is
+// the small-slip tie of a node to its reference point, but for the soil's displacement, shape
+// functions and cell taken where the node is rather than where it started (a difference of the
+// order of the soil's strain times the slip; the run-out tank's plateau moved by -0.8 %).
 //
-// The sheet is replicated on every MPI rank (hundreds of nodes): the rank that owns the cell of
-// node k (for a node on cell edges, the cell with the smallest CellId) computes its interface force,
-// one MPI sum per step shares them, and every rank then integrates the sheet's nodes identically.
+// At a corner (a vertex of the path where its direction turns) the tension turning round the
+// node pushes it into the soil on the inside of the bend: the normal penalty carries that force,
+// 2 T sin(theta / 2) for a bend of theta, into the soil through the shape functions at P(s_k), and
+// the Coulomb limit of the corner node is that of every node, with the sigma_nn of its cell on the
+// normal of the segment its soil point is on. No capstan term is added for the node's own normal
+// force: the force is already in the soil's stress (the cell's sigma_nn would count it twice), and
+// concentrated on the one node at a sharp corner it would make that node's strength a function of
+// the sheet's tension and of the node spacing rather than of the soil's stress. What this leaves
+// out, the Euler-Eytelwein friction of a sheet bent round a soil edge (T_out / T_in = exp(theta
+// tan(delta)) on a rigid edge), is left to the soil's response to the corner force. On the inside
+// of a corner a node has a foot on both parts; it moves to the part it is nearer to when it
+// crosses the bisector, so its slip jumps by twice its distance from the parts then (in the
+// sliding direction: the slider is at its limit there anyway). Corners are best laid rounded over
+// a few segments (PulloutProblem does): at a sharp one the segments beside it cut across it, and
+// each node beside it, held along its own part's normal only, balances the tension of the
+// inclined segment by its component along that part, so the tension rises across the corner (the
+// L-shaped sheet of tests/test_fem_sheet.cc held +57 % over its interface limit with a sharp
+// 90 degree corner, +9.2 % with the corner rounded over four segments, about half of which is the
+// block's fixed walls raising the normal stress near the clamp).
+// A node that passes the path's start (the clamp, pulled out through the front wall) keeps the soil
+// at the path's start, as the small-slip tie did.
+//
+// The sheet is replicated on every MPI rank (hundreds of nodes), and so are the s_k: every rank
+// follows every node's point from cell to neighbouring cell (no global search in a step; the
+// walk crosses artificial cells too, whose geometry every rank has), the rank that owns the cell
+// (for a point on cell edges, the cell with the smallest CellId) computes the node's interface
+// force and new s_k, and one MPI sum per step shares them; every rank then integrates the sheet's
+// nodes identically. The owner of a node changes with its cell, and does not depend on the
+// partition.
 #include "fem/displacement_space.h"
 #include "fem/material_point_history.h"
+#include "fem/sheet_path.h"
 #include "fem/truss_sheet.h"
 
 #include <deal.II/lac/la_parallel_vector.h>
@@ -32,7 +67,8 @@
 namespace geohybrid::fem
 {
 /// Where a sheet node sits in the soil, on the rank that computes its interface: the soil cell,
-/// the soil's shape functions there, and the cell's DoFs.
+/// the soil's shape functions there, and the cell's DoFs (small slip: the implicit solver,
+/// implicit_sheet.h).
 struct SheetSoilPoint
 {
   bool owned = false; ///< this rank computes the node's interface
@@ -55,6 +91,21 @@ std::vector<SheetSoilPoint> locate_sheet_in_soil(const DisplacementSpace &space,
 double sheet_normal_stress(MaterialPointHistory &material_points, const SheetSoilPoint &point,
                            const dealii::Tensor<1, dim> &normal);
 
+/// The soil point a node of the explicit sheet has slid to: its arc length on the reference path,
+/// the cell holding it (on every rank: it may be a ghost or artificial cell here), and, on the
+/// rank that computes its interface, the shape functions there, the cell's DoFs and material
+/// points (these change only when the cell does).
+struct SlidingSoilPoint
+{
+  double arc_length = 0.0;   ///< s on the reference path (beyond [0, length]: the clamp pulled out) [m]
+  unsigned int segment = 0;  ///< of the reference path
+  bool owned = false;        ///< this rank computes the node's interface
+  dealii::DoFHandler<dim>::cell_iterator cell;
+  std::vector<double> shape_values;                          ///< N_i(P(s)) of the cell's DoFs
+  std::vector<dealii::types::global_dof_index> dof_indices; ///< of the cell (owner only)
+  std::vector<const MaterialPoint *> material_points;        ///< of the cell (owner only)
+};
+
 /// A node of the sheet held at a displacement d(t) (the clamp of a pull-out test).
 struct SheetClamp
 {
@@ -69,7 +120,8 @@ public:
   using Force = dealii::Tensor<1, dim>;
 
   /// Locates every node in `space`'s mesh. Throws std::invalid_argument naming `where` if a node
-  /// lies outside the mesh or the clamp's node does not exist. Collective.
+  /// lies outside the mesh or the clamp's node does not exist. Collective (every rank finds the
+  /// same cells from the coarse mesh, which each of them has whole).
   EmbeddedSheet(const DisplacementSpace &space, const TrussSheet &sheet, std::vector<SheetClamp> clamps,
                 const std::string &where = "sheet");
 
@@ -97,17 +149,31 @@ public:
   /// The force the interface exerts on the whole sheet (sum over the nodes), last step: at
   /// equilibrium, minus the clamps' forces [N/m].
   Force interface_resultant() const;
+  /// The force the interface exerts on node k (both faces), last step [N/m].
+  const Force &interface_force(std::size_t k) const { return interface_force_[k]; }
   /// Shear stress on each face at node k, last step [Pa].
   double interface_shear_stress(std::size_t k) const { return shear_stress_[k]; }
+  /// The arc length on the reference path of the soil point node k has slid to [m].
+  double soil_point_arc_length(std::size_t k) const { return soil_points_[k].arc_length; }
+  const SheetPath &reference_path() const { return path_; }
 
 private:
+  /// Moves node k's soil point to arc length `s` on `segment`: its cell (walked to from the
+  /// last one) and, if this rank owns that cell, the shape functions there.
+  void move_soil_point(std::size_t k, double s, unsigned int segment);
+  /// Makes this rank's record of node k's cell (and its DoFs and points if owned) current.
+  void set_soil_cell(SlidingSoilPoint &p, const dealii::DoFHandler<dim>::cell_iterator &cell,
+                     const dealii::Point<dim> &unit_point);
+
   const DisplacementSpace &space_;
   TrussSheet sheet_;
+  SheetPath path_;
   std::vector<SheetClamp> clamps_;
   std::vector<bool> clamped_;
-  std::vector<SheetSoilPoint> soil_points_;
+  std::vector<SlidingSoilPoint> soil_points_;
+  std::vector<unsigned int> components_; ///< of each cell DoF
   std::vector<Force> displacement_, velocity_, truss_force_, interface_force_;
-  std::vector<Force> committed_gap_; ///< relative displacement at the last step (owner only)
   std::vector<double> shear_stress_; ///< tau per face (shared)
+  std::vector<double> shared_;       ///< the per-step MPI sum's buffer
 };
 } // namespace geohybrid::fem

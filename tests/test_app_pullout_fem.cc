@@ -1,7 +1,7 @@
 // `geohybrid pullout` with 'mode = fem' end to end on a small tank (0.6 m x 1 m, 50 mm cells,
 // a few seconds): the output contract (the same files and columns as dem mode, summary.json with
 // the continuum's keys), the head tension of an elastic soil against the interface limit
-// 2 sigma_v tan(delta) L, bad input (and the wrap-around, not available in fem mode) refused by
+// 2 sigma_v tan(delta) L, a wrap-around's contract and its interface limit, bad input refused by
 // name before anything is written, and (under mpirun -np 2, test_app_pullout_fem_np2) the 1-rank
 // curve on 2 ranks.
 #include "apps/compare_command.h"
@@ -246,16 +246,16 @@ TEST(PullOutFemMode, BadInputIsRefusedByNameBeforeAnyOutput)
         Case{"subsection Continuum\n  set sheet mass scaling = 0.5\nend\n", "'Continuum/sheet mass scaling'",
              "pullout.prm"},
         Case{"subsection Anchorage\n  set H = 1.05\nend\n", "'Anchorage/H'", "pullout.prm"},
-        Case{"subsection Anchorage\n  set type = wrap-around\n  set H = 0.4\n  set D1 = 0.2\n  set D2 = 0.2\n"
-             "  set B = 0.25\nend\n",
-             "'Anchorage/type' = wrap-around is not available in fem mode", "pullout.prm"},
+        Case{"subsection Anchorage\n  set type = wrap-around\n  set H = 0.775\n  set L = 0.425\n  set D1 = 0.08\n"
+             "  set D2 = 0.695\n  set B = 0.2\nend\n",
+             "'wrap corner radius'", "pullout.prm"},
         Case{"subsection Anchorage\n  set L = 0.7\nend\n", "'Anchorage/L'", "pullout.prm"},
         Case{"subsection Continuum\n  set solver = implicit\n  set displacement increment = 0.001\nend\n",
              "'Continuum/displacement increment'", "pullout.prm"},
         Case{"subsection Continuum\n  set solver = implicit\nend\n"
-             "subsection Anchorage\n  set type = wrap-around\n  set H = 0.4\n  set D1 = 0.2\n  set D2 = 0.2\n"
-             "  set B = 0.25\nend\n",
-             "'Anchorage/type'", "pullout.prm"}})
+             "subsection Anchorage\n  set type = wrap-around\n  set H = 0.775\n  set L = 0.425\n  set D1 = 0.15\n"
+             "  set D2 = 0.625\n  set B = 0.2\nend\n",
+             "'Continuum/solver' = implicit takes a simple run-out only", "pullout.prm"}})
     {
       const std::string message = error_of(write_input(d, c.extra));
       EXPECT_NE(message.find(c.expected), std::string::npos) << c.extra << " -> " << message;
@@ -265,6 +265,62 @@ TEST(PullOutFemMode, BadInputIsRefusedByNameBeforeAnyOutput)
   MPI_Barrier(MPI_COMM_WORLD);
   if (is_writer())
     fs::remove_all(d);
+}
+
+// A wrap-around through the app (L = 0.425 m, D1 = 0.15 m up from the lower part's end at
+// H = 0.775 m, B = 0.2 m back towards the front wall at D2 = 0.625 m; the lower part, the return
+// and the upper part through the middle of a row, a column and a row of the generated cells), 4 mm:
+// the same files as the run-out, the sheet laid with its corners as arcs of 50 mm (twice the node
+// spacing), and the summary's interface limit the sum over the three parts and the arcs of
+// 2 tan(delta) sigma_n, sigma_n the geostatic normal stress (gamma z on the lower and upper parts,
+// K0 gamma z on the return). At 4 mm the lower part slides and the corners have started to turn
+// (the pull-out itself is tests/test_fem_pullout.cc): measured T_max 0.91 of the limit, the lower
+// part alone holds 0.61.
+TEST(PullOutFemMode, WrapAroundWritesTheContractWithItsInterfaceLimit)
+{
+  const fs::path d = test_directory();
+  ASSERT_EQ(error_of(write_input(d, "subsection Anchorage\n  set type = wrap-around\n  set L = 0.425\n"
+                                    "  set D1 = 0.15\n  set D2 = 0.625\n  set B = 0.2\nend\n")),
+            "");
+  if (!is_writer())
+    return;
+  const fs::path out = d / "out";
+  const std::vector<std::string> curve = lines_of(out / "pullout_curve.csv");
+  ASSERT_EQ(curve.size(), 1u + 9u);
+  EXPECT_EQ(curve[0], "head_displacement_m,head_tension_kN_per_m");
+  EXPECT_EQ(lines_of(out / "pullout_curve_sheet.csv").size(), curve.size());
+  EXPECT_EQ(lines_of(out / "sheet_displacements.csv").size(), curve.size());
+  // Segments: lower part 0.375 m in 15, each arc in 4, the return's straight 0.05 m in 2, the
+  // upper part's 0.15 m in 6.
+  const std::vector<std::string> profiles = lines_of(out / "sheet_tension.csv");
+  EXPECT_EQ(profiles[0], "head_displacement_m,node,arc_length_m,x_m,y_m,tension_kN_per_m");
+  EXPECT_EQ(profiles.size(), 1u + 2u * 31u);
+  const std::string summary = summary_of(out);
+  EXPECT_NE(summary.find("\"mode\": \"fem\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("wrap"), std::string::npos) << summary;
+  EXPECT_EQ(summary_number(summary, "n_sheet_nodes"), 32.0);
+  EXPECT_EQ(summary_number(summary, "n_cells"), 12.0 * 20.0);
+
+  const double gamma = 15.2e3, K0 = 0.3 / 0.7, H = 0.775, L = 0.425, D1 = 0.15, B = 0.2, r = 0.05;
+  double arcs = 0.0; // sigma_n = gamma z (sin^2 + K0 cos^2) of the radial angle, midpoint rule
+  for (unsigned int i = 0; i < 2000; ++i)
+    {
+      const double phi = -0.5 * pi - 0.5 * pi * (i + 0.5) / 2000, w = 0.5 * pi * r / 2000;
+      const double shape = std::pow(std::sin(phi), 2) + K0 * std::pow(std::cos(phi), 2);
+      arcs += w * shape * gamma * ((H - r - r * std::sin(phi)) + (H - D1 + r + r * std::sin(phi)));
+    }
+  const double tan_delta = std::tan(25.6 * pi / 180.0);
+  const double limit = 2.0 * tan_delta *
+                       (gamma * H * (L - r) + K0 * gamma * (H - 0.5 * D1) * (D1 - 2.0 * r) + gamma * (H - D1) * (B - r) + arcs);
+  // The app's limit sums over the arcs' chords: 0.1 % less.
+  EXPECT_NEAR(1e3 * summary_number(summary, "geostatic_interface_limit_kN_per_m"), limit, 2e-3 * limit);
+  const double T_max = 1e3 * summary_number(summary, "T_max_kN_per_m");
+  std::cout << "wrap-around through the app: T_max " << T_max << " N/m, limit " << limit << " N/m" << std::endl;
+  // Below the limit of the whole sheet, above what the lower part alone holds.
+  const double lower_part = 2.0 * tan_delta * gamma * H * (L - r);
+  EXPECT_LT(T_max, 1.03 * limit);
+  EXPECT_GT(T_max, lower_part);
+  fs::remove_all(d);
 }
 
 // On 2 ranks (test_app_pullout_fem_np2) the curve is the one of 1 rank: the same run on each

@@ -3,7 +3,9 @@
 // footing force as the same problem solved whole on each rank alone; the Lame cylinder keeps its
 // accuracy; the VTU output has one piece per rank.
 #include "fem/explicit_solver.h"
+#include "fem/pullout_problem.h"
 #include "fem/quasi_static_solver.h"
+#include "test_fem_support.h"
 #include "temporary_directory.h"
 
 #include <deal.II/base/function_lib.h>
@@ -357,6 +359,43 @@ TEST(Mpi, EmbeddedSheetGivesTheSameResultOnTwoRanks)
   EXPECT_GT(force_w, 5e3); // the sheet is loaded
   EXPECT_NEAR(force_d, force_w, 1e-10 * force_w);
   EXPECT_LT(difference, 1e-11);
+}
+
+// The wrap-around of tests/test_fem_pullout.cc (0.8 m x 0.6 m elastic tank, 50 mm cells, local
+// damping 0.3), pulled 8 mm: its return crosses the boundary between the two ranks' cells (rows
+// 0-5 and 6-11), and its nodes change cells and owners as they slide. Every rank follows every
+// soil point and the owner is the rank of the cell with the smallest CellId, so 2 ranks give the
+// 1-rank run but for the round-off that the damping's and the slider's switches amplify: the
+// documented 3e-4 of T_max for the damped sheet (fem/README.md). Measured: 7.6e-5 of T_max, the soil
+// points to 3.7e-7 m. (Undamped, unlike the run-out, which agrees to 4e-10, the wrap-around's two
+// runs part from round-off at once and reach 0.6 % of T_max by 8 mm; not understood, see README.)
+TEST(Mpi, WrapAroundSlidesRoundItsCornersAlikeOnTwoRanks)
+{
+  PulloutProblemParameters p = geohybrid::fem::testing::small_wrap_around_tank(0.004);
+  p.final_displacement = 0.008;
+  Mesh mesh_distributed(MPI_COMM_WORLD), mesh_whole(MPI_COMM_SELF);
+  make_pullout_tank_mesh(mesh_distributed, 0.8, 0.6, 0.05, p, "wrap-around");
+  make_pullout_tank_mesh(mesh_whole, 0.8, 0.6, 0.05, p, "wrap-around");
+  EXPECT_LT(mesh_distributed.n_locally_owned_active_cells(), mesh_whole.n_active_cells());
+  PulloutProblem distributed(mesh_distributed, p), whole(mesh_whole, p);
+  const PulloutResult a = distributed.run(), b = whole.run();
+  ASSERT_EQ(a.curve.size(), b.curve.size());
+  double largest = 0.0, slid = 0.0, s_difference = 0.0;
+  for (std::size_t i = 0; i < a.curve.size(); ++i)
+    largest = std::max(largest, std::abs(a.curve[i].head_tension - b.curve[i].head_tension));
+  const auto &sheet_a = *distributed.solver().sheet(), &sheet_b = *whole.solver().sheet();
+  for (std::size_t k = 0; k < sheet_b.sheet().n_nodes(); ++k)
+    {
+      s_difference = std::max(s_difference, std::abs(sheet_a.soil_point_arc_length(k) - sheet_b.soil_point_arc_length(k)));
+      slid = std::max(slid, sheet_b.reference_path().vertex_arc_length(k) - sheet_b.soil_point_arc_length(k));
+    }
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    std::cout << "wrap-around on 2 ranks: largest head tension difference " << largest / b.max_head_tension
+              << " of T_max " << b.max_head_tension << " N/m; soil points " << s_difference << " m; largest slip "
+              << slid << " m" << std::endl;
+  EXPECT_GT(slid, 0.005); // the points moved, some across cells
+  EXPECT_LT(largest, 3e-4 * b.max_head_tension);
+  EXPECT_LT(s_difference, 1e-5);
 }
 
 TEST(Mpi, VtuRecordListsOnePiecePerRank)

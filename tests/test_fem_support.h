@@ -147,4 +147,19 @@ inline PulloutProblemParameters small_pullout_tank(double pull_rate)
   return p;
 }
 
+/// A wrap-around in a 0.8 m x 0.6 m tank of elastic soil (E = 20 MPa, nu = 0.3, K0 = nu / (1 -
+/// nu)) of 15.2 kN/m^3 under 30 kPa, 50 mm cells: lower part L = 0.425 m at H = 0.375 m, return
+/// D1 = 0.15 m, upper part B = 0.2 m at H - D1 = 0.225 m, each through the middle of a row (the
+/// return of a column) of cells, nodes every 25 mm, pulled 30 mm.
+inline PulloutProblemParameters small_wrap_around_tank(double pull_rate)
+{
+  PulloutProblemParameters p = small_pullout_tank(pull_rate);
+  p.sheet_length = 0.425;
+  p.sheet_depth = 0.375;
+  p.wrap_around = true;
+  p.return_height = 0.15;
+  p.upper_length = 0.2;
+  p.final_displacement = 0.03;
+  return p;
+}
 } // namespace geohybrid::fem::testing
