@@ -114,7 +114,7 @@ void QuasiStaticSolver::setup_system()
       if (sheet_)
         for (std::size_t k = 0; k < sheet_->sheet().n_nodes(); ++k)
           sheet_nodes.push_back(sheet_->sheet().node(k));
-      rigid_body_modes_ = rigid_body_modes(space_, owned_dofs_, n_soil, sheet_nodes);
+      rigid_body_modes_ = rigid_body_modes(space_, owned_dofs_, sheet_nodes);
     }
 }
 

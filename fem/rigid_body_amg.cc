@@ -24,28 +24,24 @@ void check(PetscErrorCode error, const char *call)
 
 std::array<dealii::PETScWrappers::MPI::Vector, 3>
 rigid_body_modes(const DisplacementSpace &space, const dealii::IndexSet &owned_dofs,
-                 dealii::types::global_dof_index extra_first_dof, const std::vector<dealii::Point<dim>> &extra_nodes)
+                 const std::vector<dealii::Point<dim>> &extra_nodes)
 {
   const MPI_Comm comm = space.communicator();
-  // Every owned DoF's position and component: the soil's support points (FE_Q: every DoF has
-  // one), then the extra nodes'.
+  // Every DoF's position: the soil's support points (FE_Q: every DoF has one), then the extra
+  // nodes'. The soil's x DoFs (locally owned) from their component; an extra node's DoFs are x, y.
+  const dealii::types::global_dof_index n_soil = space.dof_handler().n_dofs();
   std::map<dealii::types::global_dof_index, dealii::Point<dim>> positions;
   dealii::DoFTools::map_dofs_to_support_points(space.mapping(), space.dof_handler(), positions);
-  std::vector<dealii::types::global_dof_index> cell_dofs(space.fe().n_dofs_per_cell());
-  std::map<dealii::types::global_dof_index, unsigned int> component_of;
-  for (const auto &cell : space.dof_handler().active_cell_iterators())
-    if (cell->is_locally_owned())
-      {
-        cell->get_dof_indices(cell_dofs);
-        for (unsigned int i = 0; i < cell_dofs.size(); ++i)
-          component_of[cell_dofs[i]] = space.fe().system_to_component_index(i).first;
-      }
   for (std::size_t k = 0; k < extra_nodes.size(); ++k)
     for (unsigned int c = 0; c < dim; ++c)
-      {
-        positions[extra_first_dof + dim * k + c] = extra_nodes[k];
-        component_of[extra_first_dof + dim * k + c] = c;
-      }
+      positions[n_soil + dim * k + c] = extra_nodes[k];
+  const dealii::IndexSet soil_x_dofs =
+    dealii::DoFTools::extract_dofs(space.dof_handler(), dealii::ComponentMask(std::vector<bool>{true, false}));
+  const auto component_of = [&](dealii::types::global_dof_index index) -> unsigned int {
+    if (index >= n_soil)
+      return (index - n_soil) % dim;
+    return soil_x_dofs.is_element(index) ? 0 : 1;
+  };
 
   // Rotation about the centroid of the DoFs' positions: the modes are then nearly orthogonal
   // before Gram-Schmidt, which keeps it accurate.
@@ -65,7 +61,7 @@ rigid_body_modes(const DisplacementSpace &space, const dealii::IndexSet &owned_d
     m.reinit(owned_dofs, comm);
   for (const auto index : owned_dofs)
     {
-      const unsigned int c = component_of.at(index);
+      const unsigned int c = component_of(index);
       const dealii::Tensor<1, dim> r = positions.at(index) - centroid;
       modes[c][index] = 1.0;                     // translation along c
       modes[2][index] = c == 0 ? -r[1] : r[0];   // rotation: (-y, x)

@@ -27,12 +27,12 @@
 namespace geohybrid::fem
 {
 /// The plane's three rigid-body modes (translation in x, in y, rotation about the centroid) on
-/// the DoFs of `space` and, after them, of extra nodes (each with two consecutive DoFs starting
-/// at `extra_first_dof`, positions `extra_nodes`, every rank passing all of them); orthonormal in
-/// the Euclidean inner product, laid out like vectors with `owned_dofs`. Collective.
+/// the DoFs of `space` and, after them, of extra nodes (node k's x and y at n_soil + 2k and
+/// n_soil + 2k + 1, as the implicit sheet numbers them; positions `extra_nodes`, every rank
+/// passing all of them); orthonormal in the Euclidean inner product, laid out like vectors with
+/// `owned_dofs`. Collective.
 std::array<dealii::PETScWrappers::MPI::Vector, 3>
 rigid_body_modes(const DisplacementSpace &space, const dealii::IndexSet &owned_dofs,
-                 dealii::types::global_dof_index extra_first_dof = 0,
                  const std::vector<dealii::Point<dim>> &extra_nodes = {});
 
 struct RigidBodyAMGSettings
