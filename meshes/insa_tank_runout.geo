@@ -6,7 +6,8 @@
 // Dimensions: H (soil above the sheet, 0.40 m as in the calibration, or 0.50 m) and L (sheet
 // length, 1 m in the calibration) are those of the reference paper (sections 2.2 and 4.3). The
 // tank's inner length and the soil below the sheet are not in the extracted text (Figure 1 was
-// lost): 1.2 m and 0.2 m are assumptions, to be replaced by the bench's drawing.
+// lost): 1.5 m and 0.2 m are assumptions (those of the bundled inputs, examples/pullout_*.prm,
+// so that their 'Continuum/mesh file' may name this mesh), to be replaced by the bench's drawing.
 //
 // Mesh: structured quadrilaterals (deal.II takes quads only), in four blocks so that the sheet's
 // level y = base is a mesh line from x = tank_length - L to the front wall: the sheet's nodes can
@@ -15,7 +16,7 @@
 // Physical lines (boundary ids): 1 bottom, 2 front wall (x = tank_length, the sheet leaves the
 // tank here), 3 top surface, 4 back wall (x = 0). Physical surface 1: the soil.
 
-tank_length = DefineNumber[1.2, Name "tank length [m] (assumed)"];
+tank_length = DefineNumber[1.5, Name "tank length [m] (assumed)"];
 base = DefineNumber[0.2, Name "soil below the sheet [m] (assumed)"];
 H = DefineNumber[0.4, Name "soil above the sheet H [m]"];
 L = DefineNumber[1.0, Name "sheet length L [m]"];

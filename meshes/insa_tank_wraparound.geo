@@ -6,8 +6,9 @@
 // the front wall back to x = tank_length - L, a vertical return of height D1, and an upper part of
 // length B coming back towards the front at depth D2. Defaults: D1 = D2 = 0.2 m (H = 0.4 m),
 // B = 0.25 m, as in the paper's simulations. The tank's inner length, the soil below the sheet
-// and the length L of the lower part are not in the extracted text (Figure 1 was lost): 1.2 m,
-// 0.2 m and 0.5 m are assumptions, to be replaced by the bench's drawing.
+// and the length L of the lower part are not in the extracted text (Figure 1 was lost): 1.5 m,
+// 0.2 m and 1 m are assumptions (those of examples/pullout_wraparound_h040_b025.prm, so that its
+// 'Continuum/mesh file' may name this mesh), to be replaced by the bench's drawing.
 //
 // Mesh: structured quadrilaterals in 3 x 3 blocks whose edges carry the lower part (y = base),
 // the return (x = tank_length - L) and the upper part (y = base + D1), so that the sheet's nodes
@@ -16,11 +17,11 @@
 // Physical lines (boundary ids): 1 bottom, 2 front wall (x = tank_length, the sheet leaves the
 // tank here), 3 top surface, 4 back wall (x = 0). Physical surface 1: the soil.
 
-tank_length = DefineNumber[1.2, Name "tank length [m] (assumed)"];
+tank_length = DefineNumber[1.5, Name "tank length [m] (assumed)"];
 base = DefineNumber[0.2, Name "soil below the sheet [m] (assumed)"];
 D1 = DefineNumber[0.2, Name "return height D1 [m]"];
 D2 = DefineNumber[0.2, Name "soil above the upper part D2 [m]"];
-L = DefineNumber[0.5, Name "lower part length L [m] (assumed)"];
+L = DefineNumber[1.0, Name "lower part length L [m] (assumed)"];
 B = DefineNumber[0.25, Name "upper part length B [m]"];
 h = DefineNumber[0.025, Name "cell size [m]"];
 

@@ -33,11 +33,11 @@ TEST(TankMesh, RunOutTankHasItsWallsAreaAndSheetLevel)
 {
   Mesh mesh(MPI_COMM_WORLD);
   read_tank_mesh(mesh, mesh_directory + "/insa_tank_runout.msh");
-  EXPECT_EQ(mesh.n_global_active_cells(), 48u * 24u); // 1.2 m x 0.6 m in 25 mm cells
+  EXPECT_EQ(mesh.n_global_active_cells(), 60u * 24u); // 1.5 m x 0.6 m in 25 mm cells
   EXPECT_EQ(mesh.get_boundary_ids(), (std::vector<dealii::types::boundary_id>{1, 2, 3, 4}));
-  EXPECT_NEAR(dealii::GridTools::volume(mesh), 1.2 * 0.6, 1e-9); // the .msh keeps ~13 digits
-  // The sheet (y = 0.2 m from x = 0.2 m to the front wall) runs along cell edges: 41 vertices.
-  EXPECT_EQ(vertices_on_level(mesh, 0.2, 0.2, 1.2).size(), 41u);
+  EXPECT_NEAR(dealii::GridTools::volume(mesh), 1.5 * 0.6, 1e-9); // the .msh keeps ~13 digits
+  // The sheet (y = 0.2 m from x = 0.5 m to the front wall) runs along cell edges: 41 vertices.
+  EXPECT_EQ(vertices_on_level(mesh, 0.2, 0.5, 1.5).size(), 41u);
 }
 
 TEST(TankMesh, WrapAroundTankHasItsWallsAreaAndSheetLines)
@@ -45,10 +45,10 @@ TEST(TankMesh, WrapAroundTankHasItsWallsAreaAndSheetLines)
   Mesh mesh(MPI_COMM_WORLD);
   read_tank_mesh(mesh, mesh_directory + "/insa_tank_wraparound.msh");
   EXPECT_EQ(mesh.get_boundary_ids(), (std::vector<dealii::types::boundary_id>{1, 2, 3, 4}));
-  EXPECT_NEAR(dealii::GridTools::volume(mesh), 1.2 * 0.6, 1e-9); // the .msh keeps ~13 digits
-  // Lower part y = 0.2 m from x = 0.7 m to 1.2 m, upper part y = 0.4 m from 0.7 m to 0.95 m.
-  EXPECT_EQ(vertices_on_level(mesh, 0.2, 0.7, 1.2).size(), 21u);
-  EXPECT_EQ(vertices_on_level(mesh, 0.4, 0.7, 0.95).size(), 11u);
+  EXPECT_NEAR(dealii::GridTools::volume(mesh), 1.5 * 0.6, 1e-9); // the .msh keeps ~13 digits
+  // Lower part y = 0.2 m from x = 0.5 m to 1.5 m, upper part y = 0.4 m from 0.5 m to 0.75 m.
+  EXPECT_EQ(vertices_on_level(mesh, 0.2, 0.5, 1.5).size(), 41u);
+  EXPECT_EQ(vertices_on_level(mesh, 0.4, 0.5, 0.75).size(), 11u);
 }
 
 // Elastic soil under gravity in the run-out tank (rollers on the walls, fixed base): the base
@@ -65,7 +65,7 @@ TEST(TankMesh, ImplicitSolverCarriesTheWeightOnTheTankMesh)
   settings.density = 1700.0;
   QuasiStaticSolver solver(mesh, elastic_soil(30e6, 0.3), bc, settings);
   solver.advance_to(1.0);
-  EXPECT_NEAR(solver.boundary_reaction(tank_boundary::bottom)[1], 1700.0 * 9.81 * 0.72, 1e-6 * 1700.0 * 9.81 * 0.72);
+  EXPECT_NEAR(solver.boundary_reaction(tank_boundary::bottom)[1], 1700.0 * 9.81 * 0.9, 1e-6 * 1700.0 * 9.81 * 0.9);
 }
 
 TEST(TankMesh, MissingFileAndUnknownBoundaryIdNameTheFile)
