@@ -41,13 +41,17 @@ void declare_continuum_parameters(ParameterHandler &prm)
   prm.declare_entry("solver", "explicit", Patterns::Selection("explicit|implicit"),
                     "fem mode only: 'explicit' (central differences with local damping, the clamp pulled at "
                     "'Pull/rate'; the solver the hybrid runs in lockstep with the DEM) or 'implicit' (quasi-static "
-                    "load steps of 'displacement increment', Newton on the consistent tangent with PETSc and "
-                    "BoomerAMG: no rate, no damping, no mass scaling; simple run-out only) [-]");
+                    "load steps of 'displacement increment', Newton on the consistent tangent with PETSc's "
+                    "linear solvers: no rate, no damping, no mass scaling; simple run-out only) [-]");
   prm.declare_entry("displacement increment", "0.5e-3", Patterns::Double(1e-7, 1.0),
                     "fem mode, implicit solver only: the head displacement of a load step, the largest used (halved "
                     "on non-convergence, grown back after); at most 'Pull/record interval' [m]");
+  prm.declare_entry("linear solver", "direct", Patterns::Selection("direct|Krylov"),
+                    "fem mode, implicit solver only: 'direct' (MUMPS LU through PETSc, distributed over the ranks; "
+                    "robust while the sheet slides over yielded soil) or 'Krylov' (CG or GMRES with the "
+                    "'preconditioner' below; less memory on very large meshes) [-]");
   prm.declare_entry("preconditioner", "BoomerAMG", Patterns::Selection("BoomerAMG|GAMG"),
-                    "fem mode, implicit solver only: the AMG of the Krylov solves: hypre's BoomerAMG (scalar) or "
+                    "fem mode, implicit solver with 'linear solver' = Krylov only: hypre's BoomerAMG (scalar) or "
                     "PETSc's GAMG given the rigid-body modes (fem/rigid_body_amg.h) [-]");
   prm.declare_entry("element degree", "1", Patterns::Integer(1, 2),
                     "fem mode only: 1 (Q1, cheaper per step and per stable step) or 2 (Q2) [-]");
@@ -96,7 +100,8 @@ struct ContinuumInput
 {
   fem::PulloutProblemParameters problem;
   bool implicit_solver = false;
-  bool rigid_body_amg = false;            ///< implicit solver: GAMG with the rigid-body modes
+  bool krylov = false;                    ///< implicit solver: Krylov instead of the sparse direct solver
+  bool rigid_body_amg = false;            ///< implicit solver, Krylov: GAMG with the rigid-body modes
   double displacement_increment = 0.5e-3; ///< implicit solver: the load step's head displacement [m]
   std::string mesh_file;
   double cell_size = 0.025;
@@ -132,6 +137,7 @@ ContinuumInput parse_continuum(ParameterHandler &prm, const PullOutInput &in, co
   c.mesh_file = prm.get("mesh file");
   c.cell_size = prm.get_double("cell size");
   c.implicit_solver = prm.get("solver") == "implicit";
+  c.krylov = prm.get("linear solver") == "Krylov";
   c.rigid_body_amg = prm.get("preconditioner") == "GAMG";
   c.displacement_increment = prm.get_double("displacement increment");
   p.sheet_node_spacing = prm.get_double("sheet node spacing");
@@ -250,6 +256,8 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
       q.pullout = c.problem;
       q.displacement_increment = c.displacement_increment;
       q.minimum_increment = std::min(q.minimum_increment, c.displacement_increment);
+      if (c.krylov)
+        q.linear_solver.method = fem::LinearSolverSettings::Method::krylov;
       if (c.rigid_body_amg)
         q.linear_solver.preconditioner = fem::LinearSolverSettings::Preconditioner::rigid_body_amg;
       implicit_problem.emplace(mesh, q, problem_where);
@@ -367,7 +375,7 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
           }
         summary.set("n_newton_iterations", static_cast<double>(n_newton));
         summary.set("n_krylov_iterations", static_cast<double>(n_krylov));
-        summary.set("n_cutbacks", static_cast<double>(implicit_problem->report().n_cutbacks));
+        summary.set("n_cutbacks", static_cast<double>(implicit_problem->report().n_cutbacks()));
       }
     summary.set("n_mpi_ranks", static_cast<double>(n_ranks));
     summary.set("wall_time_s", wall_time);

@@ -62,6 +62,8 @@ int main(int argc, char **argv)
       // to 1e-10: 1e-6 cut the GMRES iterations by 40 % at the same Newton iterations (4,608
       // cells, 2 mm).
       p.linear_solver.relative_tolerance = 1e-6;
+      if (const char *method = std::getenv("FEM_BENCH_LINEAR"); method != nullptr && std::string(method) == "direct")
+        p.linear_solver.method = LinearSolverSettings::Method::sparse_direct; // MUMPS LU, no Krylov
       if (const char *rtol = std::getenv("FEM_BENCH_LINEAR_RTOL"))
         p.linear_solver.relative_tolerance = std::stod(rtol);
       // To measure what the predictor and the line search bring (fem/quasi_static_solver.h).
@@ -89,7 +91,7 @@ int main(int argc, char **argv)
           std::cout << "progress: head " << 1e3 * point.head_displacement << " mm, T " << point.head_tension
                     << " N/m, wall " << std::chrono::duration<double>(std::chrono::steady_clock::now() - set_up).count()
                     << " s, CPU (all ranks) " << cpu << " s, Newton " << n_newton << ", Krylov " << n_krylov
-                    << ", cutbacks " << problem.report().n_cutbacks << std::endl;
+                    << ", cutbacks " << problem.report().n_cutbacks() << std::endl;
       };
       try
         {
@@ -120,7 +122,7 @@ int main(int argc, char **argv)
                     << "cells=" << mesh.n_global_active_cells() << "\n"
                     << "dofs=" << problem.solver().space().dof_handler().n_dofs() << "\n"
                     << "load_steps=" << r.n_steps << "\n"
-                    << "cutbacks=" << problem.report().n_cutbacks << "\n"
+                    << "cutbacks=" << problem.report().n_cutbacks() << "\n"
                     << "newton_iterations=" << newton << "\n"
                     << "max_newton_iterations_per_step=" << max_newton << "\n"
                     << "krylov_iterations=" << krylov << "\n"
@@ -152,6 +154,9 @@ int main(int argc, char **argv)
                   std::cout << " " << r;
                 std::cout << std::endl;
               }
+          for (const auto &cutback : problem.report().cutbacks)
+            std::cout << "cutback: " << cutback.from_time << " -> " << cutback.to_time << " m after "
+                      << cutback.n_iterations << " iterations: " << cutback.reason << "\n";
         }
     }
   catch (const std::exception &e)

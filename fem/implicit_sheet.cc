@@ -118,7 +118,17 @@ void ImplicitSheet::for_each_element(const dealii::PETScWrappers::MPI::Vector &d
           element.dofs = {dof(s, 0), dof(s, 1), dof(s + 1, 0), dof(s + 1, 1)};
           const Force d = (sheet_.node(s + 1) + u[s + 1]) - (sheet_.node(s) + u[s]);
           const Force pull = T[s] * d / d.norm(); // on node s, towards s + 1; resisting: -pull
-          const dealii::Tensor<2, dim> K = sheet_.segment_stiffness(u, s);
+          dealii::Tensor<2, dim> K = sheet_.segment_stiffness(u, s);
+          // A slack segment has no stiffness, and a node between slack segments whose interface
+          // slides has none along the sheet: the Newton matrix is singular there (MUMPS meets a
+          // zero pivot, Krylov stalls; seen at the far end of a run-out sheet once it all slides,
+          // when a predictor shortens the last segment). That happens only at iterates: at
+          // equilibrium a sliding node needs a taut segment to balance its friction. So the
+          // matrix, not the force, gives a slack segment a small axial stiffness along it; a
+          // converged state is the same.
+          if (d.norm() < sheet_.rest_length(s))
+            K = slack_segment_stiffness_fraction * sheet_.parameters().axial_stiffness / sheet_.rest_length(s) *
+                dealii::outer_product(d / d.norm(), d / d.norm());
           for (unsigned int i = 0; i < dim; ++i)
             {
               element.internal_force(i) = -pull[i];

@@ -2,7 +2,8 @@
 // The truss sheet in the implicit solver: the sheet's nodes carry their own displacement DoFs,
 // numbered after the soil's (the last MPI rank owns them, so that PETSc's contiguous ownership
 // ranges still hold), and two kinds of small elements couple them:
-// - truss segments (fem/truss_sheet.h: tension-only, T = J (l - l0)/l0, tangent zero when slack),
+// - truss segments (fem/truss_sheet.h: tension-only, T = J (l - l0)/l0, tangent zero when slack,
+//   but 1e-3 J / l0 along a slack segment in the Newton matrix: slack_segment_stiffness_fraction),
 //   between the DoFs of two consecutive nodes;
 // - interface elements (fem/sheet_interface_law.h, both faces), between the DoFs of node k and
 //   the soil DoFs of the cell that holds it: the relative displacement g = u_k - sum_i N_i(X_k) u_i
@@ -45,6 +46,11 @@ public:
     dealii::FullMatrix<double> tangent;
     dealii::Vector<double> internal_force;
   };
+
+  /// The fraction of its taut axial stiffness J / l0 that a slack segment keeps in the Newton
+  /// matrix (its force stays zero): without it a sliding node between slack segments makes the
+  /// matrix singular at an iterate (ImplicitSheet::for_each_element) [-].
+  static constexpr double slack_segment_stiffness_fraction = 1e-3;
 
   /// The sheet's DoFs are first_dof, first_dof + 1, ... (node k, component c at first_dof + 2k + c).
   /// Throws std::invalid_argument naming `where` for a clamp on a missing node or a node outside

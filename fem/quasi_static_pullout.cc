@@ -108,7 +108,7 @@ PulloutResult QuasiStaticPullout::run(const CurveObserver &observer)
       const double target = std::min(next_output, next_snapshot);
       const LoadSteppingReport stage = solver_->advance_to(target);
       report_.steps.insert(report_.steps.end(), stage.steps.begin(), stage.steps.end());
-      report_.n_cutbacks += stage.n_cutbacks;
+      report_.cutbacks.insert(report_.cutbacks.end(), stage.cutbacks.begin(), stage.cutbacks.end());
       result.n_steps = report_.steps.size();
       if (std::abs(solver_->time() - next_output) <= tolerance)
         {

@@ -28,13 +28,27 @@ struct QuasiStaticPulloutParameters
   /// A relative residual of 1e-6 of the forces (QuasiStaticSolver's measure: max(|f_int|, |f_ext|),
   /// reactions included) changes the head tension by far less than a curve shows; the solver's
   /// default of 1e-8 costs one to two more Newton iterations per step at a plastic front.
+  /// While the slip front and the plastic zone spread (the first 2-3 mm of the INSA run-out in
+  /// Mohr-Coulomb sand) the line-searched Newton takes 12-21 iterations per 1 mm step, its
+  /// residual falling steadily: 40 iterations let those steps finish instead of being halved and
+  /// redone (5,760 cells, 6 mm: 3 cutbacks at 20, none at 40; bench/RESULTS.md).
   NewtonSettings newton = pullout_newton_settings();
-  LinearSolverSettings linear_solver;
+  LinearSolverSettings linear_solver = pullout_linear_solver_settings();
 
   static NewtonSettings pullout_newton_settings()
   {
     NewtonSettings settings;
     settings.relative_tolerance = 1e-6;
+    settings.max_iterations = 40;
+    return settings;
+  }
+  /// The sparse direct solver: the tank is 2D and small enough to factorise at every iteration,
+  /// and a sliding sheet over a yielded soil makes the Krylov solves slow or fail (5,760 cells,
+  /// 6 mm: 7.7 s against 59 s with GMRES + BoomerAMG, which failed once after 5,000 iterations).
+  static LinearSolverSettings pullout_linear_solver_settings()
+  {
+    LinearSolverSettings settings;
+    settings.method = LinearSolverSettings::Method::sparse_direct;
     return settings;
   }
   /// Throws std::invalid_argument naming `where` and the parameter.

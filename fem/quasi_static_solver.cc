@@ -271,7 +271,27 @@ unsigned int QuasiStaticSolver::solve_linear_system(const dealii::AffineConstrai
   correction_ = 0.0;
   unsigned int n_iterations = 0;
   const double rhs_norm = newton_rhs_.l2_norm();
-  if (rhs_norm > 0.0)
+  if (rhs_norm > 0.0 && settings_.linear_solver.method == LinearSolverSettings::Method::sparse_direct)
+    {
+      // One LU factorisation of this iteration's tangent and one solve; it reports one iteration.
+      dealii::SolverControl control;
+      dealii::PETScWrappers::SparseDirectMUMPS mumps(control, space_.communicator());
+      mumps.set_symmetric_mode(false);
+      try
+        {
+          mumps.solve(tangent_, correction_, newton_rhs_);
+        }
+      catch (const std::exception &e)
+        {
+          throw LinearSolverFailure{std::string("the sparse direct solver (MUMPS) failed: ") + e.what()};
+        }
+      // PETSc answers a zero pivot with a solution of infinities, not an error.
+      if (!std::isfinite(correction_.l2_norm()))
+        throw LinearSolverFailure{"the sparse direct solver (MUMPS) met a singular tangent (zero pivot): a part of "
+                                  "the body or the sheet with no stiffness at this iterate"};
+      n_iterations = 1;
+    }
+  else if (rhs_norm > 0.0)
     {
       const bool symmetric = soil_.has_symmetric_tangent();
       // PETSc's CG measures the preconditioned residual, whose scale is not the force's, so the
@@ -438,7 +458,9 @@ LoadSteppingReport QuasiStaticSolver::advance_to(double end_time)
           increment = std::min(2.0 * step, settings_.stepping.increment);
           continue;
         }
-      ++report.n_cutbacks;
+      // Every residual evaluated is one iteration's assembly (line-search trials aside).
+      report.cutbacks.push_back(
+        {time_, time_ + step, static_cast<unsigned int>(outcome.relative_residuals.size()), outcome.failure});
       increment = 0.5 * step;
       if (increment < settings_.stepping.minimum_increment)
         {
@@ -450,7 +472,7 @@ LoadSteppingReport QuasiStaticSolver::advance_to(double end_time)
           std::ostringstream message;
           message << "quasi-static solver: no equilibrium found from t = " << time_ << " to t = " << time_ + step
                   << " with the increment at its minimum " << settings_.stepping.minimum_increment << " (after "
-                  << report.n_cutbacks << " cutbacks): " << outcome.failure
+                  << report.n_cutbacks() << " cutbacks): " << outcome.failure
                   << ". The load may exceed what the soil can carry (collapse), or the minimum increment be too large.";
           throw ConvergenceFailure(message.str(), time_);
         }

@@ -54,14 +54,26 @@ struct NewtonSettings
   unsigned int max_line_search_steps = 4;
 };
 
-/// CG (symmetric tangent) or right-preconditioned GMRES (non-associated flow) with BoomerAMG.
+/// CG (symmetric tangent) or right-preconditioned GMRES (non-associated flow) with BoomerAMG, or
+/// a sparse direct LU factorisation (MUMPS through PETSc, distributed over the ranks).
 /// Scalar AMG on vector elasticity coarsens poorly with hypre's defaults; a strong threshold of
 /// 0.7 and one level of aggressive coarsening measured 2 to 8 times faster on 2D Q1 and Q2
 /// elasticity (66,000 DoFs) than the default 0.25 without.
 struct LinearSolverSettings
 {
-  /// BoomerAMG (hypre, scalar) or RigidBodyAMG (PETSc's GAMG with the plane's rigid-body modes,
-  /// fem/rigid_body_amg.h).
+  /// Krylov (CG or GMRES with the preconditioner below) or sparse direct (MUMPS). A 2D tangent
+  /// factorises cheaply (nested dissection: fill ~ n log n), and a direct solve does not care how
+  /// ill-conditioned the tangent is: a pull-out's interface nodes that slide (no stiffness along
+  /// the sheet) and soil points at the Mohr-Coulomb apex (zero tangent) make the Krylov solves
+  /// slow or fail while the slip front spreads (bench/RESULTS.md, "Continuum, implicit pull-out").
+  enum class Method
+  {
+    krylov,
+    sparse_direct
+  };
+  Method method = Method::krylov;
+  /// Krylov only: BoomerAMG (hypre, scalar) or RigidBodyAMG (PETSc's GAMG with the plane's
+  /// rigid-body modes, fem/rigid_body_amg.h).
   enum class Preconditioner
   {
     boomer_amg,
@@ -109,10 +121,19 @@ struct StepRecord
   unsigned int n_backtracks = 0;        ///< line-search reductions (extra assemblies) in the step
 };
 
+/// A step that did not converge and was retried with half its increment.
+struct CutbackRecord
+{
+  double from_time, to_time;   ///< the step that failed
+  unsigned int n_iterations;   ///< Newton iterations spent on it (lost)
+  std::string reason;          ///< why it failed
+};
+
 struct LoadSteppingReport
 {
   std::vector<StepRecord> steps;
-  unsigned int n_cutbacks = 0;
+  std::vector<CutbackRecord> cutbacks; ///< one per cutback, in order (their iterations are not in steps)
+  unsigned int n_cutbacks() const { return static_cast<unsigned int>(cutbacks.size()); }
 };
 
 /// The run could not reach the requested time: `what()` names the step, the increment and the

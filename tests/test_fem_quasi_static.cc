@@ -195,7 +195,8 @@ struct LameErrors
 };
 
 LameErrors solve_lame(unsigned int degree, unsigned int refinements,
-                      LinearSolverSettings::Preconditioner preconditioner = LinearSolverSettings::Preconditioner::boomer_amg)
+                      LinearSolverSettings::Preconditioner preconditioner = LinearSolverSettings::Preconditioner::boomer_amg,
+                      LinearSolverSettings::Method method = LinearSolverSettings::Method::krylov)
 {
   const LameCylinder cylinder;
   Mesh mesh(MPI_COMM_WORLD);
@@ -207,6 +208,7 @@ LameErrors solve_lame(unsigned int degree, unsigned int refinements,
   bc.pressures = {{0, std::make_shared<LinearInTime>(0.0, cylinder.p)}};
   QuasiStaticSettings settings = exact_settings(degree);
   settings.linear_solver.preconditioner = preconditioner;
+  settings.linear_solver.method = method;
   QuasiStaticSolver solver(mesh, elastic_soil(cylinder.E, cylinder.nu), bc, settings);
   const auto report = solver.advance_to(1.0);
   std::cout << "  (" << report.steps[0].n_linear_iterations << " CG iterations)";
@@ -286,6 +288,25 @@ TEST(QuasiStatic, RigidBodyAMGSolvesTheLameCylinderInFewerIterations)
                 << "; L2 errors " << boomer.displacement_l2 << ", " << gamg.displacement_l2 << std::endl;
       EXPECT_NEAR(gamg.displacement_l2, boomer.displacement_l2, 1e-3 * boomer.displacement_l2) << r;
       EXPECT_LT(gamg.n_linear_iterations, boomer.n_linear_iterations / 2) << r;
+    }
+}
+
+// The sparse direct solver (MUMPS) solves the same system to the same answer, in one
+// factorisation per Newton iteration (the elastic cylinder: one iteration).
+TEST(QuasiStatic, SparseDirectSolverSolvesTheLameCylinderAsTheKrylovSolver)
+{
+  using P = LinearSolverSettings::Preconditioner;
+  using M = LinearSolverSettings::Method;
+  for (const unsigned int degree : {1u, 2u})
+    {
+      const LameErrors krylov = solve_lame(degree, 4), direct = solve_lame(degree, 4, P::boomer_amg, M::sparse_direct);
+      std::cout << "Lame Q" << degree << " refinement 4: L2 error Krylov " << krylov.displacement_l2 << ", direct "
+                << direct.displacement_l2 << "; max stress error / p " << krylov.stress_max << ", "
+                << direct.stress_max << std::endl;
+      // CG to 1e-13 against an LU factorisation: the discretisation errors agree to round-off.
+      EXPECT_NEAR(direct.displacement_l2, krylov.displacement_l2, 1e-8 * krylov.displacement_l2) << degree;
+      EXPECT_NEAR(direct.stress_max, krylov.stress_max, 1e-8 * krylov.stress_max) << degree;
+      EXPECT_EQ(direct.n_linear_iterations, 1u) << degree;
     }
 }
 
