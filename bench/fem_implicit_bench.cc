@@ -42,6 +42,8 @@ int main(int argc, char **argv)
       p.pullout.sheet_length = 1.0;
       p.pullout.sheet_depth = 0.4;
       p.pullout.sheet_node_spacing = 0.0125;
+      if (const char *spacing = std::getenv("FEM_BENCH_NODE_SPACING"))
+        p.pullout.sheet_node_spacing = std::stod(spacing); // about half the cell size: fem/README.md
       p.pullout.soil.kind = SoilModelKind::mohr_coulomb;
       p.pullout.soil.young_modulus = 20e6;
       p.pullout.soil.poisson_ratio = 0.3;
@@ -62,8 +64,9 @@ int main(int argc, char **argv)
       // to 1e-10: 1e-6 cut the GMRES iterations by 40 % at the same Newton iterations (4,608
       // cells, 2 mm).
       p.linear_solver.relative_tolerance = 1e-6;
-      if (const char *method = std::getenv("FEM_BENCH_LINEAR"); method != nullptr && std::string(method) == "direct")
-        p.linear_solver.method = LinearSolverSettings::Method::sparse_direct; // MUMPS LU, no Krylov
+      // The pull-out's default is the sparse direct solver (MUMPS); GMRES + BoomerAMG on request.
+      if (const char *method = std::getenv("FEM_BENCH_LINEAR"); method != nullptr && std::string(method) == "krylov")
+        p.linear_solver.method = LinearSolverSettings::Method::krylov;
       if (const char *rtol = std::getenv("FEM_BENCH_LINEAR_RTOL"))
         p.linear_solver.relative_tolerance = std::stod(rtol);
       // To measure what the predictor and the line search bring (fem/quasi_static_solver.h).
