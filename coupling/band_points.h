@@ -5,6 +5,10 @@
 // interpolated displacement or velocity at a particle, and the spreading of a particle's force
 // to the nodes, N_I(X_p) f_p) without searching the mesh or allocating.
 //
+// A point a little outside the mesh (within `extrapolation_distance` of its nearest cell) is
+// tied to that cell's shape functions extrapolated: the particles just outside the band's
+// particle-side edge, whose contacts reach into the band, must be tied too (see band_particles.h).
+//
 // Points are located once, in the reference configuration: the bridging domain method ties a
 // particle to the continuum's field at its material point (small strain in the band), so the
 // interpolation does not change during a run. locate() may be called again (it allocates) if the
@@ -27,10 +31,11 @@ public:
   using Vector = dealii::LinearAlgebra::distributed::Vector<double>;
 
   /// Locates `points` [m] in `space`'s mesh; `layout` is a vector of the solver (its partitioner
-  /// gives the local indices). Throws std::invalid_argument naming the point if one lies outside the
-  /// mesh (the band must lie inside the continuum), or if the space is distributed over more than
-  /// one MPI rank.
-  BandPoints(const fem::DisplacementSpace &space, const Vector &layout, const std::vector<dem::Vec2> &points);
+  /// gives the local indices). Throws std::invalid_argument naming the point if one lies farther
+  /// than `extrapolation_distance` [m] outside the mesh (the band must lie inside the continuum),
+  /// or if the space is distributed over more than one MPI rank.
+  BandPoints(const fem::DisplacementSpace &space, const Vector &layout, const std::vector<dem::Vec2> &points,
+             double extrapolation_distance = 0.0);
   void locate(const std::vector<dem::Vec2> &points);
 
   std::size_t size() const { return n_points_; }
@@ -56,6 +61,7 @@ public:
 private:
   const fem::DisplacementSpace &space_;
   const Vector &layout_;
+  double extrapolation_distance_ = 0.0;
   std::size_t n_points_ = 0;
   unsigned int nodes_per_point_ = 0;
   std::vector<unsigned int> x_dof_, y_dof_;
