@@ -29,20 +29,22 @@ struct PatchGeometry
   double row_height() const { return spacing() * std::sqrt(3.0) / 2.0; }
 };
 
+/// A disc's id from its place in the lattice (column i, row j): the same disc in two patches.
+inline std::int64_t lattice_id(unsigned int i, unsigned int j) { return 100000 * static_cast<std::int64_t>(j) + i; }
+
 /// The discs of the particle region: rows of the lattice, cut one spacing past the band's
 /// continuum edge (the last ones are driven by the continuum).
 inline dem::ParticleSet patch_particles(const PatchGeometry &g)
 {
   dem::ParticleSet p;
   const double d = g.spacing(), x_end = (g.band_start + g.band_width + 1.0) * d;
-  std::int64_t id = 0;
   for (unsigned int j = 0; j < g.rows; ++j)
     for (unsigned int i = 0;; ++i)
       {
         const double x = i * d + (j % 2) * 0.5 * d;
         if (x >= x_end)
           break;
-        p.add_disc(Vec2(x, j * g.row_height()), g.radius, g.density, id++);
+        p.add_disc(Vec2(x, j * g.row_height()), g.radius, g.density, lattice_id(i, j));
       }
   return p;
 }
