@@ -132,7 +132,7 @@ TEST(CoupledStepper, UndampedRunKeepsItsEnergyWithPenalty)
   EXPECT_LT(std::abs(own.drift), 1e-4);
 }
 
-TEST(CoupledStepper, RefusesDampingAndABandOutsideTheMesh)
+TEST(CoupledStepper, RefusesDampingABandOutsideTheMeshAndAnUnstableStep)
 {
   const auto message_of = [](auto make) {
     try
@@ -170,5 +170,9 @@ TEST(CoupledStepper, RefusesDampingAndABandOutsideTheMesh)
               .find("outside the continuum's mesh"),
             std::string::npos);
   EXPECT_NE(message_of([&] { PenaltyCoupling{-1.0}.validate(); }).find("penalty factor"), std::string::npos);
+  // A particle step the weighted band makes unstable (the band's light discs): refused, not lowered.
+  EXPECT_NE(message_of([&] { coupled_patch_at_rest(LagrangeMultiplierCoupling{}, {}, undamped_settings(2e-5)); })
+              .find("above the stable limit"),
+            std::string::npos);
 }
 } // namespace

@@ -1,5 +1,5 @@
-// A long wave through the overlap band (issue 6): the energy the band reflects back into the
-// particle region, for both coupling methods.
+// Waves through the overlap band (issue 6): the energy the band reflects back into the particle
+// region, for both coupling methods, in a strip (1D-like) and in a square patch (2D).
 #include "test_coupling_patch.h"
 
 #include <gtest/gtest.h>
@@ -31,12 +31,24 @@ PatchGeometry strip(double band_width)
 /// The pulse: x-velocity V exp(-((x - x0) / s)^2), x0 = 20 spacings, s in spacings (for s = 4 its
 /// spectrum lies at wavelengths above about 2 pi s / 2 ~ 12 spacings: long waves), on the free discs. It splits
 /// into a left- and a right-going half; the right-going one crosses the band.
-void launch(dem::DemSystem &system, const std::vector<bool> &moving, double spacing, double width)
+/// The pulse's shape: 1D (a function of x only) or 2D (a blob round (x0, y0)).
+struct Pulse
+{
+  double x0 = 0.0, y0 = 0.0, width = 0.0; ///< [m]
+  bool blob = false;
+  double value(double x, double y) const
+  {
+    const double r2 = std::pow(x - x0, 2) + (blob ? std::pow(y - y0, 2) : 0.0);
+    return 1e-3 * std::exp(-r2 / (width * width));
+  }
+};
+
+void launch(dem::DemSystem &system, const std::vector<bool> &moving, const Pulse &pulse)
 {
   dem::ParticleSet &p = system.particles();
   for (std::size_t b = 0; b < p.n_bodies(); ++b)
     if (moving[b])
-      p.vx[b] = 1e-3 * std::exp(-std::pow((p.x[b] - 20.0 * spacing) / (width * spacing), 2));
+      p.vx[b] = pulse.value(p.x[b], p.y[b]);
 }
 
 /// The fraction of the incident (right-going, half the initial) energy that the band sends back
@@ -48,10 +60,11 @@ struct WaveRecord
 {
   double reflected = 0.0, transmitted = 0.0;
 };
-WaveRecord crossing(const CouplingMethod &method, double band_width, double pulse_width)
+/// The run: `travel` is how far [m] the slowest wave of interest must go before the measurement,
+/// at `speed` [m/s].
+WaveRecord crossing(const CouplingMethod &method, const PatchGeometry &g, const Pulse &pulse, double travel,
+                    double speed)
 {
-  const PatchGeometry g = strip(band_width);
-  const double d = g.spacing();
   CoupledPatch patch = coupled_patch_at_rest(method, g);
   dem::DemSystem &coupled = *patch.particles;
   const dem::ParticleSet &pc = coupled.particles();
@@ -60,7 +73,7 @@ WaveRecord crossing(const CouplingMethod &method, double band_width, double puls
     free_disc[b] = false;
   for (std::size_t b = 0; b < pc.n_bodies(); ++b)
     free_disc[b] = free_disc[b] && pc.inverse_mass[b] > 0.0;
-  launch(coupled, free_disc, d, pulse_width);
+  launch(coupled, free_disc, pulse);
 
   PatchGeometry whole = g;
   whole.band_start = g.continuum_end; // the lattice over the whole strip
@@ -69,15 +82,10 @@ WaveRecord crossing(const CouplingMethod &method, double band_width, double puls
   reference.initialise_forces();
   reference.bond_touching_contacts();
   const dem::ParticleSet &pr = reference.particles();
-  launch(reference, std::vector<bool>(pr.n_bodies(), true), d, pulse_width);
+  launch(reference, std::vector<bool>(pr.n_bodies(), true), pulse);
   const double initial = reference.energy().kinetic;
 
-  const auto moduli = hexagonal_lattice_moduli(g.kn, g.ks);
-  const double bar_speed = std::sqrt(4.0 * moduli.shear_modulus * (moduli.lame_lambda + moduli.shear_modulus) /
-                                     (moduli.lame_lambda + 2.0 * moduli.shear_modulus) /
-                                     (g.density * moduli.density_factor));
-  const double travel = (g.band_start - 20.0 + band_width + 20.0) * d;
-  const auto n_steps = static_cast<unsigned int>(travel / bar_speed / patch.stepper->time_step());
+  const auto n_steps = static_cast<unsigned int>(travel / speed / patch.stepper->time_step());
   patch.stepper->run_steps(n_steps);
   reference.run_steps(n_steps);
 
@@ -109,13 +117,28 @@ WaveRecord crossing(const CouplingMethod &method, double band_width, double puls
       difference += 0.5 * g.kn * std::pow(n.dot(relative), 2) + 0.5 * g.ks * std::pow(t.dot(relative), 2);
     }
   WaveRecord record;
+  // A 1D pulse sends half its energy each way; a 2D blob, less than half toward the band: the
+  // fraction is of half the initial energy in both cases (a bound from above for the blob's).
   record.reflected = difference / (0.5 * initial);
   const CouplingDiagnostics diagnostics = patch.stepper->diagnostics();
   record.transmitted = (diagnostics.continuum_kinetic + diagnostics.continuum_elastic) / (0.5 * initial);
-  std::cout << "band of " << band_width << " spacings, pulse width " << pulse_width
-            << " spacings: reflected energy fraction " << record.reflected << ", in the continuum "
-            << record.transmitted << " (" << n_steps << " steps)" << std::endl;
+  std::cout << "band of " << g.band_width << " spacings, pulse width " << pulse.width / g.spacing()
+            << " spacings" << (pulse.blob ? " (2D)" : "") << ": reflected energy fraction " << record.reflected
+            << ", in the continuum " << record.transmitted << " (" << n_steps << " steps)" << std::endl;
   return record;
+}
+
+/// The 1D-like strip: the pulse 20 spacings in, measured when it runs 20 spacings into the
+/// continuum at the bar speed sqrt(E_2D / rho) (the long-wave speed of a strip with free sides).
+WaveRecord strip_crossing(const CouplingMethod &method, double band_width, double pulse_width)
+{
+  const PatchGeometry g = strip(band_width);
+  const double d = g.spacing();
+  const auto m = hexagonal_lattice_moduli(g.kn, g.ks);
+  const double bar_speed = std::sqrt(4.0 * m.shear_modulus * (m.lame_lambda + m.shear_modulus) /
+                                     (m.lame_lambda + 2.0 * m.shear_modulus) / (g.density * m.density_factor));
+  const Pulse pulse{20.0 * d, 0.0, pulse_width * d, false};
+  return crossing(method, g, pulse, (g.band_start - 20.0 + band_width + 20.0) * d, bar_speed);
 }
 
 // The issue asks for a reflected energy fraction below 1e-2 for long waves (wavelength >= 10
@@ -125,17 +148,39 @@ WaveRecord crossing(const CouplingMethod &method, double band_width, double puls
 // more (the measure sees reflections); penalty (factor 1) 4.7e-3 for the long pulse.
 TEST(WaveThroughTheBand, MultipliersReflectLittleOfALongWave)
 {
-  const WaveRecord long_wave = crossing(LagrangeMultiplierCoupling{}, 4.0, 4.0);
+  const WaveRecord long_wave = strip_crossing(LagrangeMultiplierCoupling{}, 4.0, 4.0);
   EXPECT_LT(long_wave.reflected, 1e-2);
   EXPECT_GT(long_wave.transmitted, 0.9); // the pulse did cross
-  const WaveRecord short_wave = crossing(LagrangeMultiplierCoupling{}, 4.0, 1.0);
+  const WaveRecord short_wave = strip_crossing(LagrangeMultiplierCoupling{}, 4.0, 1.0);
   EXPECT_GT(short_wave.reflected, 3.0 * long_wave.reflected);
 }
 
 TEST(WaveThroughTheBand, PenaltyReflectsLittleOfALongWave)
 {
-  const WaveRecord long_wave = crossing(PenaltyCoupling{}, 4.0, 4.0);
+  const WaveRecord long_wave = strip_crossing(PenaltyCoupling{}, 4.0, 4.0);
   EXPECT_LT(long_wave.reflected, 1e-2);
   EXPECT_GT(long_wave.transmitted, 0.9);
+}
+// The same through a square patch: a blob of x-velocity (width 4 spacings) 10 spacings from the
+// band sends P and S waves at all angles; measured once the S waves have run 10 spacings past
+// the band (the P waves are then 40 spacings on, short of the continuum's far end). Measured:
+// reflected 1.1e-4 of half the initial energy, 77 % of it in the continuum (40 rows, 1,300 discs
+// coupled, 2,600 in the reference run, 144 steps).
+TEST(WaveThroughTheBand, MultipliersReflectLittleOfA2DWave)
+{
+  PatchGeometry g;
+  g.rows = 40;
+  g.band_start = 30.3;
+  g.band_width = 4.0;
+  g.continuum_end = g.band_start + 4.0 + 46.0;
+  g.cells_x = 50;
+  g.cells_y = 35;
+  const double d = g.spacing();
+  const auto m = hexagonal_lattice_moduli(g.kn, g.ks);
+  const double shear_speed = std::sqrt(m.shear_modulus / (g.density * m.density_factor));
+  const Pulse blob{20.3 * d, 0.5 * (g.rows - 1) * g.row_height(), 4.0 * d, true};
+  const WaveRecord record = crossing(LagrangeMultiplierCoupling{}, g, blob, (10.0 + 4.0 + 10.0) * d, shear_speed);
+  EXPECT_LT(record.reflected, 1e-2);
+  EXPECT_GT(record.transmitted, 0.5);
 }
 } // namespace
