@@ -111,7 +111,7 @@ GhostForces ghost_forces(const CoupledPatch &patch, const double (&eps)[2][2])
   const double stress = std::sqrt(sxx * sxx + syy * syy + 2 * sxy * sxy);
   const double d = g.spacing(), h = g.row_height();
   const double cell_x = (g.continuum_end - g.band_start) * d / g.cells_x, cell_y = g.rows * h / g.cells_y;
-  const double a = g.band_start * d, y_bottom = -0.5 * h, y_top = (g.rows - 0.5) * h;
+  const double y_bottom = -0.5 * h, y_top = (g.rows - 0.5) * h;
 
   GhostForces ghost;
   const dem::ParticleSet &p = patch.particles->particles();
