@@ -153,6 +153,10 @@ double DemSystem::critical_time_step() const
       ks_max = std::max(ks_max, law.shear_stiffness());
     }
   const ParticleSet &p = particles_;
+  double largest_radius = 0.0;
+  if (weighted_)
+    for (double r : p.disc_radius)
+      largest_radius = std::max(largest_radius, r);
   double dt = std::numeric_limits<double>::infinity();
   for (std::size_t b = 0; b < p.n_bodies(); ++b)
     {
@@ -171,8 +175,19 @@ double DemSystem::critical_time_step() const
           rotational_stiffness +=
             max_contacts_per_disc * (ks_max * (radius2 + 0.5 * offset2) + kn_max * 0.5 * offset2);
         }
-      const double omega2_translation = n_contacts * (kn_max + ks_max) * p.inverse_mass[b];
-      const double omega2_rotation = 2.0 * rotational_stiffness * p.inverse_inertia[b];
+      // With energy weights the mass is already weighted; the contacts' springs are weighted by
+      // at most the weight at the far end of the longest branch (twice the largest disc radius
+      // beyond the body's farthest disc).
+      double stiffness_weight = 1.0;
+      if (weighted_)
+        {
+          double reach = 0.0;
+          for (std::uint32_t d = p.first_disc[b]; d < p.first_disc[b] + p.n_discs[b]; ++d)
+            reach = std::max(reach, std::hypot(p.disc_offset_x[d], p.disc_offset_y[d]) + 2.0 * largest_radius);
+          stiffness_weight = energy_weights_.largest_contact_weight(b, reach);
+        }
+      const double omega2_translation = stiffness_weight * n_contacts * (kn_max + ks_max) * p.inverse_mass[b];
+      const double omega2_rotation = stiffness_weight * 2.0 * rotational_stiffness * p.inverse_inertia[b];
       dt = std::min(dt, 2.0 / std::sqrt(std::max(omega2_translation, omega2_rotation)));
     }
   if (!sheets_.empty())
@@ -224,6 +239,46 @@ void DemSystem::set_particle_law(const LinearContactLaw &law)
   skin_ = std::max(skin_, 1.05 * particle_law_.max_bonded_gap());
 }
 
+void DemSystem::set_energy_weights(EnergyWeights weights)
+{
+  const std::string where = "DEM energy weights: ";
+  if (weighted_)
+    throw std::invalid_argument(where + "the weights are already set");
+  if (!(weights.band_width > 0.0) || !std::isfinite(weights.band_width))
+    throw std::invalid_argument(where + "parameter 'band width' = " + std::to_string(weights.band_width) +
+                                " m must be positive");
+  ParticleSet &p = particles_;
+  if (weights.body_band_coordinate.size() != p.n_bodies())
+    throw std::invalid_argument(where + std::to_string(weights.body_band_coordinate.size()) +
+                                " band coordinates for " + std::to_string(p.n_bodies()) + " bodies");
+  // A body in the continuum-only region has no mass left; it may only be a fixed body (one the
+  // coupling moves with the continuum, whose contacts with the band's bodies still carry weight).
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    if (!(weights.body_weight(b) > 0.0) && p.inverse_mass[b] != 0.0)
+      throw std::invalid_argument(where + "body " + std::to_string(p.body_id[b]) +
+                                  " lies in the continuum-only region (band coordinate " +
+                                  std::to_string(weights.body_band_coordinate[b]) + " m >= band width " +
+                                  std::to_string(weights.band_width) + " m) and is free: it has no energy to carry");
+  // The particles' share of the kinetic energy (and of gravity, which acts on the mass).
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    {
+      const double weight = weights.body_weight(b);
+      p.mass[b] *= weight;
+      p.inertia[b] *= weight;
+      if (p.inverse_mass[b] != 0.0)
+        {
+          p.inverse_mass[b] /= weight;
+          p.inverse_inertia[b] /= weight;
+        }
+    }
+  energy_weights_ = std::move(weights);
+  weighted_ = true;
+  forces_initialised_ = false; // the forces of the unweighted contacts are stale
+  if (settings_.time_step <= 0.0)
+    time_step_ = std::min(time_step_, settings_.time_step_safety * critical_time_step());
+  set_time_step(time_step_);
+}
+
 void DemSystem::bond_touching_contacts()
 {
   initialise_forces(); // the contacts touching now are known only after a force evaluation
@@ -259,6 +314,7 @@ void DemSystem::initialise_forces()
   // Forces at t = 0, so that the first half kick sees gravity and initial overlaps.
   // A zero step length keeps the tangential springs and dissipation untouched.
   const double dt = time_step_;
+  first_step_ = dt;
   time_step_ = 0.0;
   rebuild_if_needed();
   start_forces_from_gravity();
@@ -558,11 +614,19 @@ void DemSystem::compute_forces_and_kick()
 {
   // The energy bookkeeping and the dashpot are fixed for a run: the loop is compiled for each
   // combination, so that a run without them does none of their work per contact.
+  // Energy weights (a coupled region) are a third such switch.
   const bool dashpot = particle_law_.has_dashpot();
-  if (settings_.track_energy)
-    dashpot ? compute_forces_and_kick_for<true, true>() : compute_forces_and_kick_for<true, false>();
+  if (weighted_)
+    {
+      if (settings_.track_energy)
+        dashpot ? compute_forces_and_kick_for<true, true, true>() : compute_forces_and_kick_for<true, false, true>();
+      else
+        dashpot ? compute_forces_and_kick_for<false, true, true>() : compute_forces_and_kick_for<false, false, true>();
+    }
+  else if (settings_.track_energy)
+    dashpot ? compute_forces_and_kick_for<true, true, false>() : compute_forces_and_kick_for<true, false, false>();
   else
-    dashpot ? compute_forces_and_kick_for<false, true>() : compute_forces_and_kick_for<false, false>();
+    dashpot ? compute_forces_and_kick_for<false, true, false>() : compute_forces_and_kick_for<false, false, false>();
 }
 
 // Pairs [begin, end) of a chunk whose pairs start at `owner_begin`: each pair's force on disc i
@@ -571,7 +635,7 @@ void DemSystem::compute_forces_and_kick()
 // chunk_checked_end); such a body gets its moment stored for its owner to add later. Not inlined,
 // so that one thread and each chunk of several run the same machine code. Returns the number of
 // bonds broken.
-template <bool track_energy, bool with_dashpot, bool checked>
+template <bool track_energy, bool with_dashpot, bool weighted, bool checked>
 __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin, std::size_t end,
                                                                std::size_t owner_begin)
 {
@@ -612,7 +676,15 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
     const ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt,
                               p.inverse_mass[bi] + p.inverse_mass[bj], dt};
     const ContactForce f = law.evaluate<with_dashpot>(k, state);
-    const Vec2 force_on_i = -f.normal_force * normal + f.tangential_force * tangent;
+    Vec2 force_on_i = -f.normal_force * normal + f.tangential_force * tangent;
+    // A contact in a coupling band acts with the particles' share of the energy along its
+    // branch (energy_weights.h); its state (the springs' forces) stays unweighted.
+    [[maybe_unused]] double weight = 1.0;
+    if constexpr (weighted)
+      {
+        weight = energy_weights_.contact_weight(bi, bj);
+        force_on_i *= weight;
+      }
     c.force_x[q] = force_on_i.x();
     c.force_y[q] = force_on_i.y();
     moment_i = cross(lever_i, force_on_i);
@@ -620,8 +692,16 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
     c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
     if constexpr (track_energy)
       {
-        c.friction_work[q] = f.friction_work;
-        c.viscous_work[q] = f.viscous_work;
+        if constexpr (weighted)
+          {
+            c.friction_work[q] = weight * f.friction_work;
+            c.viscous_work[q] = weight * f.viscous_work;
+          }
+        else
+          {
+            c.friction_work[q] = f.friction_work;
+            c.viscous_work[q] = f.viscous_work;
+          }
       }
     broken += f.bond_broke;
     return true;
@@ -653,7 +733,7 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
   return broken;
 }
 
-template <bool track_energy, bool with_dashpot>
+template <bool track_energy, bool with_dashpot, bool weighted>
 void DemSystem::compute_forces_and_kick_for()
 {
   ParticleSet &p = particles_;
@@ -672,8 +752,8 @@ void DemSystem::compute_forces_and_kick_for()
   // (ascending pair) order on any number of threads, without a separate pass over all bodies.
   const auto run_chunk = [&](std::size_t k) {
     const std::size_t begin = c.chunk_begin(k), checked_end = c.chunk_checked_end[k], end = c.chunk_begin(k + 1);
-    return pair_range<track_energy, with_dashpot, true>(begin, checked_end, begin) +
-           pair_range<track_energy, with_dashpot, false>(checked_end, end, begin);
+    return pair_range<track_energy, with_dashpot, weighted, true>(begin, checked_end, begin) +
+           pair_range<track_energy, with_dashpot, weighted, false>(checked_end, end, begin);
   };
   const auto complete_shared_body = [&](std::size_t k) {
     const std::uint32_t b = c.shared_body[k];
@@ -703,9 +783,9 @@ void DemSystem::compute_forces_and_kick_for()
   // their pairs) and the second half kick. With several chunks and no sheets, all of it runs in
   // one parallel region; with sheets, their forces come between the walls and the kick, outside.
   std::uint64_t broken = 0;
-  const bool one_region = c.n_chunks > 1 && sheets_.empty();
+  const bool one_region = c.n_chunks > 1 && sheets_.empty() && !force_hook_;
   if (c.n_chunks == 1) // outside a parallel region the compiler optimises the loop better
-    broken = pair_range<track_energy, with_dashpot, false>(0, c.size(), 0);
+    broken = pair_range<track_energy, with_dashpot, weighted, false>(0, c.size(), 0);
   else
     {
 #pragma omp parallel num_threads(settings_.n_threads) reduction(+ : broken)
@@ -740,6 +820,8 @@ void DemSystem::compute_forces_and_kick_for()
       book_wall_work();
       if (!sheets_.empty())
         compute_sheet_forces_and_kick(); // adds the disc-sheet forces to the bodies before their kick
+      if (force_hook_)
+        force_hook_(particles_, forces_initialised_ ? time_step_ : 0.5 * first_step_);
       const int n_threads = settings_.n_threads;
 #pragma omp parallel num_threads(n_threads) if (n_threads > 1)
       {
@@ -926,7 +1008,11 @@ EnergyBudget DemSystem::energy() const
     }
   for (std::size_t q = 0; q < pairs_.size(); ++q)
     if (pairs_.state[q].touching)
-      e.elastic += particle_law_.elastic_energy(pairs_.elastic_normal_force[q], pairs_.state[q].tangential_force);
+      {
+        const double stored = particle_law_.elastic_energy(pairs_.elastic_normal_force[q], pairs_.state[q].tangential_force);
+        e.elastic += weighted_ ? energy_weights_.contact_weight(p.disc_body[pairs_.disc_i[q]], p.disc_body[pairs_.disc_j[q]]) * stored
+                               : stored;
+      }
   for (std::size_t w = 0; w < walls_.size(); ++w)
     for (std::size_t q = 0; q < wall_contacts_[w].disc.size(); ++q)
       if (wall_contacts_[w].state[q].touching)

@@ -26,11 +26,13 @@
 // sheet_contacts.*, called from here. A system without sheets runs exactly as before.
 #include "contact_law.h"
 #include "contact_list.h"
+#include "energy_weights.h"
 #include "particles.h"
 #include "sheet_contacts.h"
 #include "spar_sheet.h"
 #include "wall.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -177,6 +179,30 @@ public:
   void set_sheet_local_damping(double alpha);
   double sheet_local_damping() const { return sheet_local_damping_; }
 
+  /// Bridging-domain energy weights (energy_weights.h; Xiao & Belytschko 2004), for a DEM region
+  /// coupled to a continuum through an overlap band: each body's mass and inertia are multiplied by
+  /// its weight (here, once), each particle-particle contact's force, energy and dissipation by the
+  /// mean weight along its branch (in the force loop, a separate compiled variant: a system
+  /// without weights runs the unweighted loop unchanged). Wall and sheet contacts are not weighted
+  /// (keep walls and sheets out of the band). An automatic time step is lowered to the weighted
+  /// critical step; a step the user chose is re-checked. Throws std::invalid_argument if the
+  /// coordinates do not match the bodies, 'band width' is not positive, a free body has no weight
+  /// left (it lies in the continuum-only region: only fixed bodies, moved by the coupling, may), or
+  /// the step is now unstable. Once only.
+  void set_energy_weights(EnergyWeights weights);
+  /// nullptr without weights.
+  const EnergyWeights *energy_weights() const { return weighted_ ? &energy_weights_ : nullptr; }
+
+  /// A function called once per force evaluation, after every contact, wall and sheet force and
+  /// before the second half kick: it may add external forces to the bodies (a coupling's forces).
+  /// Its second argument is the time over which these forces will act on the bodies' current
+  /// velocities before the next drift: the time step (second half kick, then the next first half
+  /// kick), or half of it at the first evaluation (initialise_forces(), velocities at t = 0).
+  /// Forces added here count in the unbalanced force but not in the energy budget: the caller
+  /// books their work. An empty function (the default) costs one test per step.
+  using ForceHook = std::function<void(ParticleSet &particles, double impulse_time)>;
+  void set_force_hook(ForceHook hook) { force_hook_ = std::move(hook); }
+
   /// Forces the next step to rebuild the neighbour lists (after moving particles or walls by hand).
   void request_neighbour_rebuild() { rebuild_needed_ = true; }
   std::uint64_t n_neighbour_rebuilds() const { return n_rebuilds_; }
@@ -203,9 +229,9 @@ private:
   /// Pair and wall forces of the new positions (on top of gravity, set by kick_and_drift()),
   /// then the second half kick: one parallel region on several threads (without sheets).
   void compute_forces_and_kick();
-  template <bool track_energy, bool with_dashpot>
+  template <bool track_energy, bool with_dashpot, bool weighted>
   void compute_forces_and_kick_for();
-  template <bool track_energy, bool with_dashpot, bool checked>
+  template <bool track_energy, bool with_dashpot, bool weighted, bool checked>
   std::uint64_t pair_range(std::size_t begin, std::size_t end, std::size_t owner_begin);
   void compute_wall_forces();   ///< forces only; book_wall_work() books their energy terms
   void book_wall_work();
@@ -252,6 +278,12 @@ private:
 
   EnergyBudget accumulated_; ///< only the dissipated terms and boundary work are used
   double sheet_local_damping_ = -1.0; ///< negative: settings_.local_damping
+
+  // Coupling (set_energy_weights, set_force_hook): unused by an uncoupled system.
+  EnergyWeights energy_weights_;
+  bool weighted_ = false;
+  ForceHook force_hook_;
+  double first_step_ = 0.0; ///< the step initialise_forces() prepares (its own step length is 0)
 };
 
 /// Sum of values in a fixed order of fixed-size blocks: the same result for any thread count.

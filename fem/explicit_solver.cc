@@ -86,6 +86,40 @@ ExplicitSolver::ExplicitSolver(const dealii::parallel::distributed::Triangulatio
   assemble_external_force(time_);
 }
 
+double ExplicitSolver::energy_weight_at(const dealii::FEValues<dim> &fe_values, unsigned int q) const
+{
+  if (!energy_weight_)
+    return 1.0;
+  const double w = energy_weight_(fe_values.quadrature_point(q));
+  if (!(w >= 0.0 && w <= 1.0))
+    throw std::invalid_argument("explicit solver: energy weight " + std::to_string(w) +
+                                " outside [0, 1] at a quadrature point");
+  return w;
+}
+
+void ExplicitSolver::set_energy_weight(const std::function<double(const dealii::Point<dim> &)> &weight)
+{
+  if (energy_weight_)
+    throw std::invalid_argument("explicit solver: the energy weight is already set");
+  if (n_steps_ > 0)
+    throw std::invalid_argument("explicit solver: the energy weight must be set before the first step");
+  energy_weight_ = weight;
+  assemble_mass_and_body_force();
+  build_cell_cache();
+  critical_time_step_ = compute_critical_time_step();
+  if (settings_.time_step > stable_time_step())
+    {
+      std::ostringstream message;
+      message << "explicit solver: energy weight: parameter 'time step' = " << settings_.time_step
+              << " s exceeds the stable step " << stable_time_step() << " s of the weighted mesh";
+      throw std::invalid_argument(message.str());
+    }
+  time_step_ = settings_.time_step > 0.0 ? settings_.time_step : stable_time_step();
+  increment_ = 0.0;
+  assemble_internal_force(increment_);
+  assemble_external_force(time_);
+}
+
 void ExplicitSolver::set_initial_stress(const std::function<StressTensor(const dealii::Point<dim> &)> &stress,
                                         const std::string &description)
 {
@@ -99,6 +133,26 @@ void ExplicitSolver::set_initial_stress(const GeostaticStress &geostatic)
   geostatic.validate("geostatic stress");
   set_initial_stress([&](const dealii::Point<dim> &x) { return geostatic.stress_at(x); },
                      "the geostatic stress (K0 = " + std::to_string(geostatic.k0) + ")");
+}
+
+void ExplicitSolver::set_initial_displacement(const dealii::Function<dim> &displacement)
+{
+  if (displacement.n_components != dim)
+    throw std::invalid_argument("explicit solver: the initial displacement function has " +
+                                std::to_string(displacement.n_components) + " components instead of 2");
+  if (n_steps_ > 0)
+    throw std::invalid_argument("explicit solver: the initial displacement must be set before the first step");
+  dealii::PETScWrappers::MPI::Vector interpolated(space_.locally_owned_dofs(), space_.communicator());
+  dealii::VectorTools::interpolate(space_.mapping(), space_.dof_handler(), displacement, interpolated);
+  const auto &owned = space_.locally_owned_dofs();
+  for (unsigned int i = 0; i < displacement_.locally_owned_size(); ++i)
+    {
+      increment_.local_element(i) = interpolated[owned.nth_index_in_set(i)] - displacement_.local_element(i);
+      displacement_.local_element(i) += increment_.local_element(i);
+    }
+  increment_.update_ghost_values();
+  displacement_.update_ghost_values();
+  assemble_internal_force(increment_);
 }
 
 void ExplicitSolver::set_initial_velocity(const dealii::Function<dim> &velocity)
@@ -160,7 +214,8 @@ void ExplicitSolver::assemble_mass_and_body_force()
   body_force_ = 0.0;
   const auto &fe = space_.fe();
   dealii::FEValues<dim> fe_values(space_.mapping(), fe, space_.cell_quadrature(),
-                                  dealii::update_values | dealii::update_JxW_values);
+                                  dealii::update_values | dealii::update_JxW_values |
+                                    (energy_weight_ ? dealii::update_quadrature_points : dealii::update_default));
   const unsigned int n_dofs = fe.n_dofs_per_cell();
   std::vector<dealii::types::global_dof_index> dof_indices(n_dofs);
   const double rho = settings_.density;
@@ -175,7 +230,7 @@ void ExplicitSolver::assemble_mass_and_body_force()
             // Row sum of the consistent mass: the shape functions of a component sum to one.
             double integral = 0.0;
             for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
-              integral += fe_values.shape_value_component(i, q, c) * fe_values.JxW(q);
+              integral += fe_values.shape_value_component(i, q, c) * fe_values.JxW(q) * energy_weight_at(fe_values, q);
             mass_[dof_indices[i]] += rho * integral;
             body_force_[dof_indices[i]] += rho * settings_.gravity[c] * integral;
           }
@@ -186,8 +241,10 @@ void ExplicitSolver::assemble_mass_and_body_force()
   for (unsigned int i = 0; i < mass_.locally_owned_size(); ++i)
     smallest = std::min(smallest, mass_.local_element(i));
   if (dealii::Utilities::MPI::min(smallest, space_.communicator()) <= 0.0)
-    throw std::invalid_argument("explicit solver: the row-sum lumped mass is not positive at some node (a badly "
-                                "distorted cell?)");
+    throw std::invalid_argument(energy_weight_ ? "explicit solver: energy weight: a node has no mass left (the mesh "
+                                                 "reaches past the overlap band, where the continuum's weight is 0)"
+                                               : "explicit solver: the row-sum lumped mass is not positive at some "
+                                                 "node (a badly distorted cell?)");
 }
 
 double ExplicitSolver::compute_critical_time_step() const
@@ -196,7 +253,8 @@ double ExplicitSolver::compute_critical_time_step() const
   // square root of the largest eigenvalue of M_e^-1/2 K_e M_e^-1/2 with the elastic stiffness.
   const auto &fe = space_.fe();
   dealii::FEValues<dim> fe_values(space_.mapping(), fe, space_.cell_quadrature(),
-                                  dealii::update_values | dealii::update_gradients | dealii::update_JxW_values);
+                                  dealii::update_values | dealii::update_gradients | dealii::update_JxW_values |
+                                    (energy_weight_ ? dealii::update_quadrature_points : dealii::update_default));
   const dealii::FEValuesExtractors::Vector u(0);
   const unsigned int n_dofs = fe.n_dofs_per_cell();
   const TangentTensor &C = soil_.elasticity().plane_strain_stiffness();
@@ -211,7 +269,7 @@ double ExplicitSolver::compute_critical_time_step() const
         std::fill(cell_mass.begin(), cell_mass.end(), 0.0);
         for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
           {
-            const double JxW = fe_values.JxW(q);
+            const double JxW = fe_values.JxW(q) * energy_weight_at(fe_values, q);
             for (unsigned int i = 0; i < n_dofs; ++i)
               {
                 shape_strains[i] = fe_values[u].symmetric_gradient(i, q);
@@ -225,6 +283,9 @@ double ExplicitSolver::compute_critical_time_step() const
                   scaled(i, j) += (stress_of_i * shape_strains[j]) * JxW;
               }
           }
+        // A cell with zero energy weight at all its points has neither mass nor stiffness.
+        if (*std::min_element(cell_mass.begin(), cell_mass.end()) <= 0.0)
+          continue;
         for (unsigned int i = 0; i < n_dofs; ++i)
           for (unsigned int j = 0; j < n_dofs; ++j)
             scaled(i, j) /= std::sqrt(cell_mass[i] * cell_mass[j]);
@@ -249,7 +310,8 @@ void ExplicitSolver::build_cell_cache()
       dof_scalar_[i] = fe.system_to_component_index(i).second;
     }
   dealii::FEValues<dim> fe_values(space_.mapping(), fe, space_.cell_quadrature(),
-                                  dealii::update_gradients | dealii::update_JxW_values);
+                                  dealii::update_gradients | dealii::update_JxW_values |
+                                    (energy_weight_ ? dealii::update_quadrature_points : dealii::update_default));
   const auto &partitioner = *displacement_.get_partitioner();
   std::vector<dealii::types::global_dof_index> dof_indices(n_dofs);
   cells_.clear();
@@ -266,7 +328,7 @@ void ExplicitSolver::build_cell_cache()
         c.gradients.resize(n_q * n_scalar);
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            c.JxW.push_back(fe_values.JxW(q));
+            c.JxW.push_back(fe_values.JxW(q) * energy_weight_at(fe_values, q));
             for (unsigned int i = 0; i < n_dofs; ++i)
               c.gradients[q * n_scalar + dof_scalar_[i]] = fe_values.shape_grad_component(i, q, dof_component_[i]);
           }
@@ -392,6 +454,18 @@ void ExplicitSolver::take_step(double dt)
   time_ = new_time;
   previous_step_ = dt;
   ++n_steps_;
+}
+
+void ExplicitSolver::set_time_step(double dt)
+{
+  if (!(dt > 0.0) || dt > stable_time_step())
+    {
+      std::ostringstream message;
+      message << "explicit solver: parameter 'time step' = " << dt << " s must be positive and at most the stable step "
+              << stable_time_step() << " s";
+      throw std::invalid_argument(message.str());
+    }
+  time_step_ = dt;
 }
 
 void ExplicitSolver::step()

@@ -71,6 +71,10 @@ public:
   void set_initial_stress(const std::function<StressTensor(const dealii::Point<dim> &)> &stress,
                           const std::string &description);
   void set_initial_stress(const GeostaticStress &geostatic);
+  /// Sets the displacement u(x) (2 components [m]) at the nodes, at time(), before the first
+  /// step; the material points take the stress of the strain it makes (from their current
+  /// stress) and the internal force follows. Collective.
+  void set_initial_displacement(const dealii::Function<dim> &displacement);
   /// Sets the velocity v(x) (2 components [m/s]) at the nodes, at time(). Collective.
   void set_initial_velocity(const dealii::Function<dim> &velocity);
 
@@ -81,6 +85,17 @@ public:
   void attach_sheet(const TrussSheet &sheet, std::vector<SheetClamp> clamps);
   const EmbeddedSheet *sheet() const { return sheet_.get(); } ///< nullptr without a sheet
 
+  /// Bridging-domain energy weight of the continuum (Xiao & Belytschko 2004; coupling/): the
+  /// continuum carries the share w(x) in [0, 1] of the energy where it overlaps a particle region,
+  /// so w multiplies the internal force's integrand, the lumped mass and the body force at every
+  /// quadrature point. Applied here once (to the cached JxW and to the mass): the step costs the
+  /// same as without. The stable step is recomputed with the weights; an automatic step follows
+  /// it, a step the user chose is refused if now unstable. Throws std::invalid_argument if w is
+  /// outside [0, 1] at a quadrature point, or if a node is left without mass (a cell where w = 0
+  /// everywhere: the mesh must not reach past the band into the particles' own region).
+  /// Collective; call before the first step, once.
+  void set_energy_weight(const std::function<double(const dealii::Point<dim> &)> &weight);
+
   /// One step of time_step(). Collective.
   void step();
   /// Steps of at most time_step() until time() == end_time (the last ones evenly shortened).
@@ -90,6 +105,11 @@ public:
   double time() const { return time_; }
   unsigned int n_steps() const { return n_steps_; }
   double time_step() const { return time_step_; }
+  /// Sets the step of the following steps (a coupled run's common step). Throws
+  /// std::invalid_argument naming 'time step' if it is not positive or above stable_time_step().
+  void set_time_step(double dt);
+  const ExplicitSettings &settings() const { return settings_; }
+  const SoilModel &soil() const { return soil_; }
   double critical_time_step() const { return critical_time_step_; } ///< 2 / max element omega [s]
   double stable_time_step() const { return settings_.safety_factor * critical_time_step_; }
 
@@ -98,6 +118,14 @@ public:
   const Vector &velocity() const { return velocity_; }         ///< v at time() - dt/2, owned [m/s]
   const Vector &lumped_mass() const { return mass_; }          ///< per DoF [kg/m]
   MaterialPointHistory &material_points() { return material_points_; }
+  const Vector &internal_force() const { return internal_force_; } ///< f_int(u_n), owned [N/m]
+  const Vector &external_force() const { return external_force_; } ///< f_ext(t_n), owned [N/m]
+  /// Whether owned DoF `local_dof` (local index) has a prescribed displacement.
+  bool is_constrained(unsigned int local_dof) const { return constrained_[local_dof]; }
+  /// Adds `force` [N/m] to the external force at time() on owned DoF `local_dof` (local index):
+  /// the next step applies it with the loads (a coupling's force on the continuum). The external
+  /// force is rebuilt at every step, so it acts for one step only.
+  void add_external_force(unsigned int local_dof, double force) { external_force_.local_element(local_dof) += force; }
 
   /// Kinetic energy 1/2 v.M v of the half-step velocity [J/m]. Collective.
   double kinetic_energy() const;
@@ -123,6 +151,8 @@ private:
     std::vector<dealii::Tensor<1, dim>> gradients; ///< [q * n_scalar + j]
   };
   void build_cell_cache();
+  /// w at the quadrature points of `fe_values` (1 without energy weights).
+  double energy_weight_at(const dealii::FEValues<dim> &fe_values, unsigned int q) const;
   double compute_critical_time_step() const;
   void assemble_mass_and_body_force();
   /// f_int from the displacement increment du (ghosted), updating and committing the points.
@@ -155,5 +185,6 @@ private:
   std::unique_ptr<EmbeddedSheet> sheet_;
   std::vector<CellCache> cells_;
   std::vector<unsigned int> dof_component_, dof_scalar_; ///< of each cell DoF: its component and scalar shape
+  std::function<double(const dealii::Point<dim> &)> energy_weight_; ///< empty without coupling
 };
 } // namespace geohybrid::fem

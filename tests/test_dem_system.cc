@@ -732,3 +732,74 @@ TEST(ParticleOrder, SpatialSortKeepsBodiesAndBringsNeighboursClose)
   EXPECT_GT(before, 10.0 * after) << before << " -> " << after;
   EXPECT_THROW(spatially_sorted(shuffled, 0.0), std::invalid_argument);
 }
+
+// Coupling hooks (issue 6): energy weights scale a body's mass by its weight and a contact's
+// force, stored energy and dissipation by the mean weight along its branch; the force hook adds
+// forces before the second half kick.
+TEST(EnergyWeights, ScaleMassesAndContactForcesByTheBranchMean)
+{
+  // Two discs 1 cm across overlapping by 1 um, the band (8 mm wide) starting between them.
+  const double r = 0.005, overlap = 1e-6, kn = 1e7, width = 0.008;
+  const auto make = [&] {
+    ParticleSet p;
+    p.add_disc(Vec2(0.0, 0.0), r, 2000.0);
+    p.add_disc(Vec2(2 * r - overlap, 0.0), r, 2000.0);
+    ContactParameters c;
+    c.normal_stiffness = kn;
+    c.shear_stiffness = 0.5 * kn;
+    DemSettings s;
+    s.gravity = Vec2(0.0, 0.0);
+    s.local_damping = 0.0;
+    return DemSystem(p, LinearContactLaw(c), s);
+  };
+  DemSystem plain = make(), weighted = make();
+  EnergyWeights weights;
+  weights.band_width = width;
+  const double s0 = -0.004, s1 = s0 + 2 * r - overlap; // particle weights 1 and 1 - s1 / width
+  weights.body_band_coordinate.resize(2);
+  weights.body_band_coordinate[0] = s0;
+  weights.body_band_coordinate[1] = s1;
+  EnergyWeights past_the_band = weights;
+  weighted.set_energy_weights(weights);
+  plain.initialise_forces();
+  weighted.initialise_forces();
+  // Mean of 1 - clamp(s / w) along the branch: 4 mm at 1, then s1 of the ramp at 1 - s1 / (2 w).
+  const double branch_weight = (-s0 + s1 * (1.0 - s1 / (2.0 * width))) / (s1 - s0);
+  EXPECT_NEAR(weights.contact_weight(0, 1), branch_weight, 1e-14);
+  EXPECT_NEAR(plain.particles().fx[0], -kn * overlap, 1e-9 * kn * overlap);
+  EXPECT_NEAR(weighted.particles().fx[0], branch_weight * plain.particles().fx[0], 1e-12 * kn * overlap);
+  EXPECT_NEAR(weighted.particles().fx[1], -weighted.particles().fx[0], 1e-12 * kn * overlap);
+  EXPECT_DOUBLE_EQ(weighted.particles().mass[0], plain.particles().mass[0]);
+  EXPECT_NEAR(weighted.particles().mass[1], (1.0 - s1 / width) * plain.particles().mass[1], 1e-12 * plain.particles().mass[1]);
+  EXPECT_NEAR(weighted.particles().inverse_mass[1] * weighted.particles().mass[1], 1.0, 1e-14);
+  EXPECT_NEAR(weighted.energy().elastic, branch_weight * plain.energy().elastic, 1e-12 * plain.energy().elastic);
+  EXPECT_LT(weighted.critical_time_step(), plain.critical_time_step()); // a lighter body, weighted springs
+  // A free body with no weight left (past the band's continuum edge) is refused.
+  past_the_band.body_band_coordinate[1] = width + 0.001;
+  DemSystem past = make();
+  EXPECT_THROW(past.set_energy_weights(past_the_band), std::invalid_argument);
+}
+
+TEST(EnergyWeights, ForceHookActsBeforeTheSecondHalfKick)
+{
+  ParticleSet p;
+  p.add_disc(Vec2(0.0, 0.0), 0.01, 1000.0);
+  DemSettings s;
+  s.gravity = Vec2(0.0, 0.0);
+  s.local_damping = 0.0;
+  DemSystem system(p, LinearContactLaw(), s);
+  std::vector<double> impulse_times;
+  const double force = 2.0; // N/m along x
+  system.set_force_hook([&](ParticleSet &particles, double impulse_time) {
+    particles.fx[0] += force;
+    impulse_times.push_back(impulse_time);
+  });
+  system.run_steps(10);
+  // A constant force: v = F t / m after 10 steps, x = F t^2 / (2 m) (velocity Verlet is exact here).
+  const double m = system.particles().mass[0], dt = system.time_step(), t = 10 * dt;
+  EXPECT_NEAR(system.particles().vx[0], force * t / m, 1e-12 * force * t / m);
+  EXPECT_NEAR(system.particles().x[0], 0.5 * force * t * t / m, 1e-12 * force * t * t / m);
+  ASSERT_EQ(impulse_times.size(), 11u); // the evaluation at t = 0, then one per step
+  EXPECT_DOUBLE_EQ(impulse_times[0], 0.5 * dt);
+  EXPECT_DOUBLE_EQ(impulse_times[1], dt);
+}

@@ -190,6 +190,60 @@ TEST(ExplicitSolver, StableStepIsTheCourantBoundAndLargerStepsAreRefused)
   EXPECT_NO_THROW(ExplicitSolver(mesh, elastic_soil(E, 0.0), bc, settings));
 }
 
+// The coupling's hooks (issue 6): an energy weight w(x) multiplies the lumped mass and the
+// internal force at every quadrature point. A uniform weight halves both and leaves the stable
+// step as it was; a weight that reaches 0 on a whole cell leaves its nodes without mass (refused).
+// An initial displacement u = G x gives the internal force of the uniform stress C : G.
+TEST(ExplicitSolver, EnergyWeightScalesMassAndInternalForce)
+{
+  const double E = 10e6, nu = 0.25, rho = 2000.0;
+  Mesh mesh(MPI_COMM_WORLD);
+  make_rectangle(mesh, 4, 3, Point<dim>(0, 0), Point<dim>(0.4, 0.3));
+  ExplicitSettings settings;
+  settings.density = rho;
+  ExplicitSolver plain(mesh, elastic_soil(E, nu), BoundaryConditions{}, settings);
+  ExplicitSolver half(mesh, elastic_soil(E, nu), BoundaryConditions{}, settings);
+  half.set_energy_weight([](const Point<dim> &) { return 0.5; });
+  EXPECT_NEAR(half.critical_time_step(), plain.critical_time_step(), 1e-12 * plain.critical_time_step());
+  class Affine : public dealii::Function<dim>
+  {
+  public:
+    Affine() : dealii::Function<dim>(dim) {}
+    double value(const Point<dim> &x, unsigned int c) const override
+    {
+      return c == 0 ? 1e-4 * x[0] + 2e-4 * x[1] : -3e-4 * x[1];
+    }
+  };
+  plain.set_initial_displacement(Affine());
+  half.set_initial_displacement(Affine());
+  double largest = 0.0;
+  for (unsigned int i = 0; i < plain.lumped_mass().locally_owned_size(); ++i)
+    {
+      EXPECT_NEAR(half.lumped_mass().local_element(i), 0.5 * plain.lumped_mass().local_element(i),
+                  1e-14 * plain.lumped_mass().local_element(i));
+      EXPECT_NEAR(half.internal_force().local_element(i), 0.5 * plain.internal_force().local_element(i),
+                  1e-12 * std::abs(plain.internal_force().local_element(i)) + 1e-9);
+      largest = std::max(largest, std::abs(plain.internal_force().local_element(i)));
+    }
+  // Uniform stress: the forces are tractions on the boundary only; the corner force of the x-DoF
+  // at the origin is -(sigma_xx h_y + sigma_xy h_x) / 2 with h = 0.1 m (the integral of dN/dx over
+  // its cell is -h_y / 2).
+  ASSERT_GT(largest, 0.0);
+  const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+  const double exx = 1e-4, eyy = -3e-4, exy = 1e-4;
+  const double sxx = lambda * (exx + eyy) + 2 * mu * exx, sxy = 2 * mu * exy;
+  const auto &dofs = plain.space().dof_handler();
+  for (const auto &cell : dofs.active_cell_iterators())
+    for (unsigned int v = 0; v < 4; ++v)
+      if (cell->vertex(v).norm() < 1e-12)
+        {
+          const auto dof = cell->vertex_dof_index(v, 0);
+          EXPECT_NEAR(plain.internal_force()[dof], -(sxx * 0.1 + sxy * 0.1) / 2.0, 1e-9 * (std::abs(sxx) + std::abs(sxy)));
+        }
+  ExplicitSolver cut(mesh, elastic_soil(E, nu), BoundaryConditions{}, settings);
+  EXPECT_THROW(cut.set_energy_weight([](const Point<dim> &x) { return x[0] < 0.1 ? 0.0 : 1.0; }), std::invalid_argument);
+}
+
 TEST(ExplicitSolver, BadSettingsNameTheParameter)
 {
   Mesh mesh(MPI_COMM_WORLD);

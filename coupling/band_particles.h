@@ -1,0 +1,43 @@
+#pragma once
+// The particles tied to the continuum, as the coupling methods see them, gathered once when the
+// coupling is set up (small strain in the band: the lists and the interpolation do not change
+// during a run), so that each step reads short index lists.
+//
+// - Tied particles: those of the overlap band (0 < w < 1) and those within `tie margin` outside
+//   its particle-side edge. The margin is the longest branch a contact can have: a particle that
+//   close to the band has contacts whose weight, the mean along the branch, is below one while its
+//   opposite contacts' is one, so it feels a net weighted force under a uniform strain (a ghost
+//   force) unless it too is tied. Those lie just outside the mesh and are tied to the extrapolated
+//   shape functions of the nearest cell.
+// - Driven particles: those in the continuum-only region (w = 1) past the band's continuum-side
+//   edge. They have no mass left, but a contact between one of them and a band particle still
+//   carries the weight of the part of its branch inside the band; without them the band's last
+//   particles would miss those contacts (a ghost force at that edge). They are fixed bodies moved
+//   with the continuum's displacement (x = X + u(X) - u_0(X)), and their contact forces are passed
+//   to the continuum's nodes (N_I(X) F): pad particles, as in the quasicontinuum and CADD methods.
+#include "coupling/band_points.h"
+#include "coupling/overlap_band.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace geohybrid::coupling
+{
+struct BandParticles
+{
+  std::vector<std::uint32_t> body;         ///< DEM body index of each tied particle
+  std::vector<Vec2> reference_position;    ///< its centre of mass when tied [m]
+  BandPoints points;                       ///< where the reference positions sit in the mesh
+
+  std::vector<std::uint32_t> driven_body;       ///< DEM body index of each driven particle
+  std::vector<Vec2> driven_reference_position;  ///< [m]
+  BandPoints driven_points;
+
+  /// Tied: the bodies of `particles` with -tie_margin < s < w, located in `space`'s mesh
+  /// (extrapolated up to tie_margin outside it); driven: those with s >= w. Throws
+  /// std::invalid_argument if no particle is tied or one lies farther outside the mesh.
+  BandParticles(const OverlapBand &band, const dem::ParticleSet &particles, const fem::DisplacementSpace &space,
+                const BandPoints::Vector &layout, double tie_margin);
+  std::size_t size() const { return body.size(); }
+};
+} // namespace geohybrid::coupling

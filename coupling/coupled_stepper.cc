@@ -1,0 +1,158 @@
+#include "coupled_stepper.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace geohybrid::coupling
+{
+namespace
+{
+/// Checks what the stepper needs of both sides before it touches them.
+const OverlapBand &checked(const dem::DemSystem &particles, const fem::ExplicitSolver &continuum,
+                           const OverlapBand &band)
+{
+  const std::string where = "coupled stepper: ";
+  // The particles may have run before (a packing made, a strain applied): between two steps their
+  // velocities are full-step ones, which the forces at t = 0 of the coupling expect. The
+  // continuum's are half-step ones after a step.
+  if (continuum.n_steps() > 0)
+    throw std::invalid_argument(where + "set the coupling up before the continuum takes a step");
+  if (particles.settings().local_damping != 0.0)
+    throw std::invalid_argument(where + "parameter 'local damping coefficient' of the particles must be 0");
+  if (continuum.settings().damping.local != 0.0 || continuum.settings().damping.mass_proportional != 0.0)
+    throw std::invalid_argument(where + "the continuum's 'local damping' and 'mass-proportional damping' must be 0");
+  return band;
+}
+
+/// The weights go on before the band's particles are gathered: the multipliers' matrix needs the
+/// weighted masses.
+BandParticles weighted_band(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band)
+{
+  // The particles past the band are moved by the continuum: fixed bodies (no mass, no weight).
+  dem::ParticleSet &movable = particles.particles();
+  for (std::size_t b = 0; b < movable.n_bodies(); ++b)
+    if (band.coordinate(Vec2(movable.x[b], movable.y[b])) >= band.width())
+      movable.fix_body(b);
+  particles.set_energy_weights(band.energy_weights(particles.particles()));
+  continuum.set_energy_weight(
+    [band](const dealii::Point<fem::dim> &x) { return band.continuum_weight(Vec2(x[0], x[1])); });
+  // The longest branch: twice the largest distance from a body's centre to its discs' far edge.
+  const dem::ParticleSet &p = particles.particles();
+  double extent = 0.0;
+  for (std::size_t d = 0; d < p.n_discs_total(); ++d)
+    extent = std::max(extent, std::hypot(p.disc_offset_x[d], p.disc_offset_y[d]) + p.disc_radius[d]);
+  return BandParticles(band, p, continuum.space(), continuum.displacement(), 2.0 * extent);
+}
+
+std::variant<LagrangeTie, PenaltyTie> make_tie(const CouplingMethod &method, const BandParticles &band,
+                                               const dem::DemSystem &particles, const fem::ExplicitSolver &continuum,
+                                               const OverlapBand &geometry)
+{
+  if (std::holds_alternative<PenaltyCoupling>(method))
+    return PenaltyTie(std::get<PenaltyCoupling>(method), band, particles.particles(), continuum, geometry.width());
+  return LagrangeTie(band, particles.particles(), continuum);
+}
+} // namespace
+
+CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
+                               const CouplingMethod &method)
+  : particles_(particles)
+  , continuum_(continuum)
+  , band_geometry_(checked(particles, continuum, band))
+  , band_(weighted_band(particles, continuum, band))
+  , tie_(make_tie(method, band_, particles, continuum, band))
+{
+  for (std::size_t q = 0; q < band_.driven_body.size(); ++q)
+    driven_tied_displacement_.push_back(band_.driven_points.interpolate(continuum.displacement(), q));
+  // One step for both: the smaller stable step, lowered by the penalty springs (Weyl: the
+  // squared frequencies of the uncoupled sides and of the springs add at most).
+  const double particles_omega = 2.0 / particles.critical_time_step();
+  const double continuum_omega = 2.0 / continuum.critical_time_step();
+  const double springs = std::visit(
+    [&](const auto &tie) { return tie.squared_frequency_bound(band_, particles.particles(), continuum); }, tie_);
+  const double omega = std::sqrt(std::pow(std::max(particles_omega, continuum_omega), 2) + springs);
+  const double safety = std::min(particles.settings().time_step_safety, continuum.settings().safety_factor);
+  time_step_ = std::min({safety * 2.0 / omega, particles.time_step(), continuum.time_step()});
+  particles.set_time_step(time_step_);
+  continuum.set_time_step(time_step_);
+  particles.set_force_hook([this](dem::ParticleSet &p, double impulse_time) { apply_coupling(p, impulse_time); });
+  particles.initialise_forces(); // the forces at t = 0, the coupling's included
+}
+
+CoupledStepper::~CoupledStepper() { particles_.set_force_hook({}); }
+
+void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_time)
+{
+  // The driven particles' contact forces go to the continuum's nodes first: the multipliers'
+  // predictors must see every force the continuum will feel.
+  const unsigned int n_nodes = band_.driven_points.nodes_per_point();
+  for (std::size_t q = 0; q < band_.driven_body.size(); ++q)
+    {
+      const std::uint32_t b = band_.driven_body[q];
+      for (unsigned int k = 0; k < n_nodes; ++k)
+        {
+          const double N = band_.driven_points.shape_value(q, k);
+          continuum_.add_external_force(band_.driven_points.x_dof(q, k), N * particles.fx[b]);
+          continuum_.add_external_force(band_.driven_points.y_dof(q, k), N * particles.fy[b]);
+        }
+    }
+  forces_ = CouplingForceSums{};
+  std::visit([&](auto &tie) { tie.apply(band_, particles, continuum_, impulse_time, forces_); }, tie_);
+}
+
+void CoupledStepper::step()
+{
+  continuum_.step();
+  // The driven particles drift (fixed bodies keep their velocity) to where the continuum now is.
+  dem::ParticleSet &p = particles_.particles();
+  const double dt = particles_.time_step();
+  for (std::size_t q = 0; q < band_.driven_body.size(); ++q)
+    {
+      const std::uint32_t b = band_.driven_body[q];
+      const Vec2 target = band_.driven_reference_position[q] +
+                          band_.driven_points.interpolate(continuum_.displacement(), q) - driven_tied_displacement_[q];
+      p.vx[b] = (target.x() - p.x[b]) / dt;
+      p.vy[b] = (target.y() - p.y[b]) / dt;
+    }
+  particles_.step();
+}
+
+void CoupledStepper::run_steps(unsigned int n)
+{
+  for (unsigned int k = 0; k < n; ++k)
+    step();
+}
+
+double CoupledStepper::largest_velocity_gap() const
+{
+  const auto *tie = std::get_if<LagrangeTie>(&tie_);
+  return tie ? tie->largest_velocity_gap() : 0.0;
+}
+
+CouplingDiagnostics CoupledStepper::diagnostics() const
+{
+  CouplingDiagnostics d;
+  const dem::EnergyBudget budget = particles_.energy();
+  d.particle_energy = budget.total();
+  d.particle_kinetic = budget.kinetic;
+  // The continuum's velocity at t_n: its half-step velocity plus half a step of its forces at t_n
+  // (the coupling's included), as the DEM's full-step velocity (before its first step: v_0 itself).
+  const auto &v = continuum_.velocity(), &u = continuum_.displacement(), &M = continuum_.lumped_mass();
+  const auto &f_ext = continuum_.external_force(), &f_int = continuum_.internal_force();
+  const double half = continuum_.n_steps() > 0 ? 0.5 * time_step_ : 0.0;
+  for (unsigned int i = 0; i < v.locally_owned_size(); ++i)
+    {
+      const double force = continuum_.is_constrained(i) ? 0.0 : f_ext.local_element(i) - f_int.local_element(i);
+      const double v_now = v.local_element(i) + half * force / M.local_element(i);
+      d.continuum_kinetic += 0.5 * M.local_element(i) * v_now * v_now;
+      d.continuum_elastic += 0.5 * u.local_element(i) * f_int.local_element(i);
+    }
+  d.coupling_energy = std::visit([](const auto &tie) { return tie.energy(); }, tie_);
+  d.forces = forces_;
+  return d;
+}
+} // namespace geohybrid::coupling

@@ -1,0 +1,81 @@
+#pragma once
+// The coupled DEM-FEM stepper: one DemSystem and one explicit continuum advanced in lockstep at
+// one time step, the smaller of the two stable steps (and of the penalty springs' bound), tied in
+// the overlap band by the method the input chose (coupling_method.h).
+//
+// Both integrators are the same leapfrog (central differences): the continuum's velocities live at
+// half steps, the DEM's velocity Verlet is the same scheme written with full-step velocities. One
+// coupled step n -> n+1 is:
+//   1. the continuum steps (its forces at t_n include the coupling's force at t_n);
+//   2. the DEM steps: half kick, drift to x_{n+1}, contact forces at t_{n+1}; then, through its
+//      force hook and before its second half kick, the coupling's forces at t_{n+1} are computed
+//      from both sides at t_{n+1} (the continuum is already there) and added to the particles'
+//      forces and to the continuum's external force, which its next step applies.
+// Set-up applies the energy weights to both sides (Xiao & Belytschko 2004), gathers the band's
+// particles (tied, and driven past the band: band_particles.h), and evaluates the forces at t = 0
+// with the coupling. Before the DEM steps, the driven particles are given the velocity that takes
+// them to the continuum's new displacement.
+//
+// Limits (checked, std::invalid_argument): one MPI rank; both sides undamped (local and
+// mass-proportional damping would need their own predictors); set up before the continuum steps
+// (the particles may have run before).
+// The diagnostics' continuum elastic energy 1/2 u . f_int assumes a linear elastic soil without
+// initial stress and without body force or loads on the continuum.
+#include "coupling/band_particles.h"
+#include "coupling/coupling_method.h"
+#include "coupling/lagrange_tie.h"
+#include "coupling/penalty_tie.h"
+#include "dem/dem_system.h"
+#include "fem/explicit_solver.h"
+
+#include <variant>
+
+namespace geohybrid::coupling
+{
+/// Energies [J/m] and the coupling's force balance [N/m] at the current time.
+struct CouplingDiagnostics
+{
+  double particle_energy = 0.0;    ///< DemSystem::energy().total() (weighted masses and contacts)
+  double particle_kinetic = 0.0;   ///< its kinetic part
+  double continuum_kinetic = 0.0;  ///< 1/2 v_n . M v_n, v_n the full-step velocity
+  double continuum_elastic = 0.0;  ///< 1/2 u . f_int (weighted)
+  double coupling_energy = 0.0;    ///< penalty springs; 0 for the multipliers
+  double total() const { return particle_energy + continuum_kinetic + continuum_elastic + coupling_energy; }
+  CouplingForceSums forces;        ///< the last coupling forces on each side
+};
+
+class CoupledStepper
+{
+public:
+  /// Ties `particles` and `continuum` (both must outlive the stepper, which must not move: it is
+  /// the particles' force hook). Throws std::invalid_argument as described above, or from the
+  /// band (no particle in it, a particle outside the mesh, a particle in the continuum-only region).
+  CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
+                 const CouplingMethod &method);
+  CoupledStepper(const CoupledStepper &) = delete;
+  CoupledStepper &operator=(const CoupledStepper &) = delete;
+  ~CoupledStepper();
+
+  void step();
+  void run_steps(unsigned int n);
+  double time_step() const { return time_step_; }
+  double time() const { return continuum_.time(); }
+
+  const BandParticles &band_particles() const { return band_; }
+  CouplingDiagnostics diagnostics() const;
+  /// Method 1: the velocity gap left by the last correction (round-off) [m/s]; 0 for method 2.
+  double largest_velocity_gap() const;
+
+private:
+  void apply_coupling(dem::ParticleSet &particles, double impulse_time);
+
+  dem::DemSystem &particles_;
+  fem::ExplicitSolver &continuum_;
+  OverlapBand band_geometry_;
+  BandParticles band_;
+  std::variant<LagrangeTie, PenaltyTie> tie_;
+  CouplingForceSums forces_;
+  std::vector<Vec2> driven_tied_displacement_; ///< u(X) of each driven particle when tied [m]
+  double time_step_ = 0.0;
+};
+} // namespace geohybrid::coupling

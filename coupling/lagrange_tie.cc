@@ -1,0 +1,117 @@
+#include "lagrange_tie.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace geohybrid::coupling
+{
+LagrangeTie::LagrangeTie(const BandParticles &band, const dem::ParticleSet &particles,
+                         const fem::ExplicitSolver &continuum)
+{
+  const std::size_t n = band.size();
+  const unsigned int n_nodes = band.points.nodes_per_point();
+  const auto &mass = continuum.lumped_mass();
+  for (unsigned int c = 0; c < 2; ++c)
+    {
+      // Per DoF, the band points it interpolates to, then A = D + N M^-1 N^T.
+      std::vector<std::vector<std::pair<std::size_t, double>>> by_dof(mass.locally_owned_size());
+      for (std::size_t p = 0; p < n; ++p)
+        for (unsigned int k = 0; k < n_nodes; ++k)
+          {
+            const unsigned int dof = c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k);
+            if (band.points.shape_value(p, k) != 0.0)
+              by_dof[dof].emplace_back(p, band.points.shape_value(p, k));
+          }
+      std::vector<Eigen::Triplet<double>> entries;
+      for (std::size_t p = 0; p < n; ++p)
+        entries.emplace_back(p, p, particles.inverse_mass[band.body[p]]);
+      for (unsigned int dof = 0; dof < by_dof.size(); ++dof)
+        if (!by_dof[dof].empty() && !continuum.is_constrained(dof))
+          {
+            const double inverse_mass = 1.0 / mass.local_element(dof);
+            for (const auto &[p, Np] : by_dof[dof])
+              for (const auto &[q, Nq] : by_dof[dof])
+                entries.emplace_back(p, q, Np * Nq * inverse_mass);
+          }
+      matrix_[c].resize(n, n);
+      matrix_[c].setFromTriplets(entries.begin(), entries.end());
+      factor_[c] = std::make_unique<Factor>(matrix_[c]);
+      if (factor_[c]->info() != Eigen::Success)
+        throw std::invalid_argument("Lagrange multiplier coupling: the constraint matrix is not positive definite "
+                                    "(a band particle without mass?)");
+    }
+  gap_.resize(n);
+  multiplier_.resize(n);
+  work_.resize(n);
+  check_.resize(n);
+  node_predictor_.assign(mass.locally_owned_size(), 0.0);
+}
+
+void LagrangeTie::solve(unsigned int component, const Eigen::VectorXd &b, Eigen::VectorXd &x)
+{
+  const Factor &f = *factor_[component];
+  const auto &P = f.permutationP().indices();
+  const auto &Pinv = f.permutationPinv().indices();
+  for (Eigen::Index i = 0; i < b.size(); ++i)
+    work_[P[i]] = b[i];
+  f.matrixL().solveInPlace(work_);
+  work_.array() /= f.vectorD().array();
+  f.matrixU().solveInPlace(work_);
+  for (Eigen::Index i = 0; i < b.size(); ++i)
+    x[Pinv[i]] = work_[i];
+}
+
+void LagrangeTie::apply(const BandParticles &band, dem::ParticleSet &particles, fem::ExplicitSolver &continuum,
+                        double impulse_time, CouplingForceSums &sums)
+{
+  const double tau = impulse_time;
+  if (!(tau > 0.0))
+    throw std::invalid_argument("Lagrange multiplier coupling: the time step must be positive");
+  const auto &velocity = continuum.velocity();
+  const auto &mass = continuum.lumped_mass();
+  const auto &f_ext = continuum.external_force(), &f_int = continuum.internal_force();
+  const unsigned int n_nodes = band.points.nodes_per_point();
+  const std::size_t n = band.size();
+  // The continuum's predictors at the band's nodes (a prescribed DoF keeps its velocity).
+  for (std::size_t p = 0; p < n; ++p)
+    for (unsigned int k = 0; k < n_nodes; ++k)
+      for (const unsigned int dof : {band.points.x_dof(p, k), band.points.y_dof(p, k)})
+        node_predictor_[dof] = velocity.local_element(dof) +
+                               (continuum.is_constrained(dof)
+                                  ? 0.0
+                                  : tau * (f_ext.local_element(dof) - f_int.local_element(dof)) / mass.local_element(dof));
+  largest_velocity_gap_ = 0.0;
+  for (unsigned int c = 0; c < 2; ++c)
+    {
+      double *const v = c == 0 ? particles.vx.data() : particles.vy.data();
+      double *const force = c == 0 ? particles.fx.data() : particles.fy.data();
+      for (std::size_t p = 0; p < n; ++p)
+        {
+          const std::uint32_t b = band.body[p];
+          double interpolated = 0.0;
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            interpolated += band.points.shape_value(p, k) *
+                            node_predictor_[c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k)];
+          gap_[p] = (v[b] + tau * force[b] * particles.inverse_mass[b] - interpolated) / tau;
+        }
+      solve(c, gap_, multiplier_);
+      check_.noalias() = matrix_[c] * multiplier_;
+      for (std::size_t p = 0; p < n; ++p)
+        largest_velocity_gap_ = std::max(largest_velocity_gap_, tau * std::abs(check_[p] - gap_[p]));
+      for (std::size_t p = 0; p < n; ++p)
+        {
+          const double lambda = multiplier_[p];
+          force[band.body[p]] -= lambda;
+          sums.on_particles[c] -= lambda;
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            {
+              const double N = band.points.shape_value(p, k);
+              continuum.add_external_force(c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k), N * lambda);
+              sums.on_continuum[c] += N * lambda;
+            }
+        }
+    }
+}
+} // namespace geohybrid::coupling

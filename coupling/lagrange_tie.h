@@ -1,0 +1,62 @@
+#pragma once
+// Method 1, the bridging domain method with Lagrange multipliers (Xiao & Belytschko 2004, section
+// 3): in the band, each particle's velocity equals the continuum's velocity interpolated at it,
+//   g_p = v_p - sum_I N_I(X_p) v_I = 0,
+// enforced exactly on the half-step velocities that set the displacement increments, so the
+// particles and the continuum also move together (and the multipliers do no work: the coupled
+// leapfrog conserves its energy).
+//
+// At time t_n both sides know their forces F_n and their velocities; with no coupling force their
+// next half-step velocities would be the predictors v*_p = v_p + tau F_p / m_p and
+// v*_I = v_I + tau f_I / M_I (tau: the time the forces act before the next drift, dt, or dt/2 at the
+// start). A multiplier lambda_p, applied as -lambda_p to particle p and +N_I(X_p) lambda_p to node I,
+// corrects them to v*_p - tau lambda_p / m_p and v*_I + tau sum_p N_I lambda_p / M_I; the constraint
+// then reads, per component,
+//   A lambda = g* / tau,   A_pq = delta_pq / m_p + sum_I N_I(X_p) N_I(X_q) / M_I,
+// with g* the predictors' gap. m_p are the particles' weighted masses and M_I the continuum's
+// weighted lumped masses (a node with a prescribed displacement counts as infinitely heavy). A is
+// symmetric positive definite and constant (fixed weights, fixed X_p): it is factored once (sparse
+// LDL^T, one per component since the constrained DoFs may differ) and each step costs two solves.
+#include "coupling/band_particles.h"
+#include "coupling/coupling_forces.h"
+#include "fem/explicit_solver.h"
+
+#include <Eigen/SparseCholesky>
+
+#include <array>
+#include <memory>
+
+namespace geohybrid::coupling
+{
+class LagrangeTie
+{
+public:
+  LagrangeTie(const BandParticles &band, const dem::ParticleSet &particles, const fem::ExplicitSolver &continuum);
+
+  /// Solves for the multipliers at the current forces and velocities and applies them to both
+  /// sides (the continuum's through ExplicitSolver::add_external_force).
+  void apply(const BandParticles &band, dem::ParticleSet &particles, fem::ExplicitSolver &continuum,
+             double impulse_time, CouplingForceSums &sums);
+  double energy() const { return 0.0; } ///< a velocity constraint stores no energy
+
+  /// The largest |tau A lambda - g*| of the last apply(): the velocity gap the correction leaves,
+  /// round-off when the solve is right [m/s].
+  double largest_velocity_gap() const { return largest_velocity_gap_; }
+  double squared_frequency_bound(const BandParticles &, const dem::ParticleSet &, const fem::ExplicitSolver &) const
+  {
+    return 0.0; // the constraint adds no stiffness (it only joins masses)
+  }
+
+private:
+  using Matrix = Eigen::SparseMatrix<double>;
+  using Factor = Eigen::SimplicialLDLT<Matrix>;
+  /// x = A^-1 b with the stored factor, without allocating (Eigen's solve() permutes through a temporary).
+  void solve(unsigned int component, const Eigen::VectorXd &b, Eigen::VectorXd &x);
+
+  std::array<Matrix, 2> matrix_;
+  std::array<std::unique_ptr<Factor>, 2> factor_;
+  Eigen::VectorXd gap_, multiplier_, work_, check_;
+  std::vector<double> node_predictor_; ///< v*_I per local DoF touched by the band
+  double largest_velocity_gap_ = 0.0;
+};
+} // namespace geohybrid::coupling

@@ -1,0 +1,44 @@
+#pragma once
+// Shared set-up of the coupling tests: hexagonal lattices of equal discs and their contact law.
+#include "dem/dem_system.h"
+
+#include <cmath>
+
+namespace geohybrid::coupling::testing
+{
+/// A hexagonal lattice of `columns` x `rows` equal discs of radius r, rows along x, centres
+/// `spacing` apart (spacing < 2 r: every neighbour pair overlaps by 2 r - spacing), the first
+/// disc at `corner`. Odd rows are shifted by half a spacing.
+inline dem::ParticleSet hexagonal_lattice(unsigned int columns, unsigned int rows, double radius, double spacing,
+                                          double density, const dem::Vec2 &corner = dem::Vec2(0.0, 0.0))
+{
+  dem::ParticleSet p;
+  const double row_height = spacing * std::sqrt(3.0) / 2.0;
+  for (unsigned int j = 0; j < rows; ++j)
+    for (unsigned int i = 0; i < columns; ++i)
+      p.add_disc(corner + dem::Vec2(i * spacing + (j % 2) * 0.5 * spacing, j * row_height), radius, density,
+                 static_cast<std::int64_t>(j * columns + i));
+  return p;
+}
+
+/// A frictionless-enough linear law (Coulomb limit far above the forces of a small strain).
+inline dem::LinearContactLaw lattice_law(double kn, double ks)
+{
+  dem::ContactParameters c;
+  c.normal_stiffness = kn;
+  c.shear_stiffness = ks;
+  c.friction_angle_deg = 60.0;
+  c.restitution = 1.0;
+  return dem::LinearContactLaw(c);
+}
+
+inline dem::DemSettings undamped_settings(double time_step = 0.0)
+{
+  dem::DemSettings s;
+  s.gravity = dem::Vec2(0.0, 0.0);
+  s.local_damping = 0.0;
+  s.time_step = time_step;
+  s.n_threads = 1;
+  return s;
+}
+} // namespace geohybrid::coupling::testing
