@@ -373,7 +373,9 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
             n_newton += step.n_iterations;
             n_krylov += step.n_linear_iterations;
           }
+        summary.set("linear_solver", c.krylov ? "Krylov" : "direct");
         summary.set("n_newton_iterations", static_cast<double>(n_newton));
+        // With the direct solver each Newton iteration is one solve and counts one.
         summary.set("n_krylov_iterations", static_cast<double>(n_krylov));
         summary.set("n_cutbacks", static_cast<double>(implicit_problem->report().n_cutbacks()));
       }

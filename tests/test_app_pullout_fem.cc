@@ -196,6 +196,7 @@ TEST(PullOutFemMode, ImplicitSolverWritesTheContractAndReachesTheInterfaceLimit)
   EXPECT_EQ(lines_of(out / "sheet_tension.csv").size(), 1u + 2u * 22u);
   const std::string summary = summary_of(out);
   EXPECT_NE(summary.find("\"solver\": \"implicit\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"linear_solver\": \"direct\""), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"mode\": \"fem\""), std::string::npos) << summary;
   EXPECT_EQ(summary_number(summary, "n_steps"), 8.0); // no cutback needed on this tank
   EXPECT_EQ(summary_number(summary, "n_cutbacks"), 0.0);
