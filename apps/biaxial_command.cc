@@ -7,6 +7,8 @@
 //   biaxial_<sigma>kPa.csv  axial strain, deviatoric stress, volumetric strain, wall stresses
 //   biaxial.png             deviator and volumetric strain against axial strain
 //   summary.json            peak/residual friction angle, cohesion, E, E50, Poisson ratio, psi
+//   continuum_soil.prm      the plane-strain Mohr-Coulomb continuum with the same response, a
+//                           'subsection Continuum' fragment for pull-outs in mode = fem
 #include "biaxial_command.h"
 
 #include "contact_parameters.h"
@@ -392,6 +394,39 @@ void set_biaxial_results(Summary &summary, const dem::BiaxialParameters &r, doub
   summary.set("porosity", porosity);
 }
 
+/// The continuum soil with the biaxial response of this DEM soil (dem::continuum_equivalent), as a
+/// 'subsection Continuum' fragment that a pull-out input includes after its own, so that its fem
+/// mode runs the same soil as its dem mode. Returns the reason when there is no such continuum
+/// (nothing written then), or an empty string.
+std::string write_continuum_fragment(const std::filesystem::path &file, const dem::BiaxialParameters &r,
+                                     const std::string &input_file)
+{
+  const dem::ContinuumEquivalent c = dem::continuum_equivalent(r);
+  if (!c.invalid_reason.empty())
+    return c.invalid_reason;
+  if (c.poisson_ratio > 0.49) // the largest 'Continuum/Poisson ratio' geohybrid pullout takes
+    return "its plane-strain Poisson ratio " + number(c.poisson_ratio, 4) + " is above 0.49";
+  std::ofstream f(file);
+  f << "# The continuum soil with the biaxial response of the DEM soil of `geohybrid biaxial " << input_file << "`:\n"
+    << "# plane strain, E = E_2D (1 - nu^2) and nu = nu_2D / (1 + nu_2D) from the biaxial's E_2D = "
+    << number(r.young_modulus, 6) << " Pa and nu_2D = " << number(r.poisson_ratio, 4) << ",\n"
+    << "# the peak friction angle and cohesion of the Mohr-Coulomb fit over the confinements, the dilatancy\n"
+    << "# angle at the peak dilation rate (dem/biaxial_test.h, continuum_equivalent). For a pull-out's\n"
+    << "# mode = fem: a line 'include " << file.filename().string()
+    << "' (path relative to the working directory) after its subsection Continuum.\n"
+    << "subsection Continuum\n"
+    << "  set soil model = Mohr-Coulomb\n"
+    << "  set Young modulus = " << number(c.young_modulus) << "\n"
+    << "  set Poisson ratio = " << number(c.poisson_ratio) << "\n"
+    << "  set friction angle = " << number(c.friction_angle_deg) << "\n"
+    << "  set cohesion = " << number(c.cohesion) << "\n"
+    << "  set dilatancy angle = " << number(c.dilatancy_angle_deg) << "\n"
+    << "end\n";
+  if (!f)
+    throw std::runtime_error("cannot write " + file.string());
+  return "";
+}
+
 int run_biaxial_command(const std::string &input_file, bool resume)
 {
   if (resume)
@@ -440,8 +475,10 @@ int run_biaxial_command(const std::string &input_file, bool resume)
   plot_png(out / "biaxial.png", "Biaxial compression (one REDF sample)", {deviator, volume});
 
   const dem::BiaxialParameters r = dem::analyse_biaxial_curves(curves);
+  const std::string no_continuum = write_continuum_fragment(out / "continuum_soil.prm", r, input_file);
   Summary summary;
   summary.set("command", "biaxial");
+  summary.set("continuum_fragment", no_continuum.empty() ? "continuum_soil.prm" : "not written: " + no_continuum);
   const double porosity = mean_initial_porosity(curves);
   double inertial = 0.0;
   for (const dem::BiaxialCurve &c : curves)
@@ -459,7 +496,8 @@ int run_biaxial_command(const std::string &input_file, bool resume)
             << " deg (paper's sand 1: 38.4), residual " << r.residual_friction_angle_deg << " deg, cohesion "
             << r.cohesion << " Pa, E " << r.young_modulus / 1e6 << " MPa (paper: 20), E50 " << r.young_modulus_50 / 1e6
             << " MPa, nu " << r.poisson_ratio << ", psi " << r.dilatancy_angle_deg << " deg; porosity " << porosity
-            << "; " << wall_time << " s\nresults in " << out.string() << " (summary.json, biaxial.png, biaxial_*.csv)\n";
+            << "; " << wall_time << " s\nresults in " << out.string() << " (summary.json, biaxial.png, biaxial_*.csv"
+            << (no_continuum.empty() ? ", continuum_soil.prm)\n" : ")\nno continuum_soil.prm: " + no_continuum + "\n");
   return 0;
 }
 } // namespace geohybrid::apps

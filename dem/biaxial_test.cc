@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -270,5 +271,26 @@ BiaxialParameters analyse_biaxial_curves(const std::vector<BiaxialCurve> &curves
   r.cohesion = c;
   r.residual_friction_angle_deg = fit_mohr_coulomb(residual_1, residual_3).first;
   return r;
+}
+
+ContinuumEquivalent continuum_equivalent(const BiaxialParameters &biaxial)
+{
+  ContinuumEquivalent c;
+  const double nu_2d = biaxial.poisson_ratio, e_2d = biaxial.young_modulus;
+  c.poisson_ratio = nu_2d / (1.0 + nu_2d);
+  c.young_modulus = e_2d * (1.0 - c.poisson_ratio * c.poisson_ratio);
+  c.friction_angle_deg = biaxial.peak_friction_angle_deg;
+  c.cohesion = std::max(0.0, biaxial.cohesion);
+  c.dilatancy_angle_deg = std::clamp(biaxial.dilatancy_angle_deg, 0.0, c.friction_angle_deg);
+  std::ostringstream why;
+  if (!(e_2d > 0.0) || !std::isfinite(e_2d))
+    why << "the biaxial Young modulus " << e_2d << " Pa is not positive";
+  else if (!(nu_2d >= 0.0 && nu_2d < 1.0))
+    why << "the biaxial Poisson ratio " << nu_2d
+        << " lies outside [0, 1): no isotropic plane-strain continuum has it (nu = nu_2D / (1 + nu_2D) >= 0.5)";
+  else if (!(c.friction_angle_deg > 0.0 && c.friction_angle_deg < 90.0))
+    why << "the peak friction angle " << c.friction_angle_deg << " deg lies outside (0, 90)";
+  c.invalid_reason = why.str();
+  return c;
 }
 } // namespace geohybrid::dem

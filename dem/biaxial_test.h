@@ -8,6 +8,7 @@
 #include "dem_system.h"
 
 #include <cstdint>
+#include <string>
 #include <functional>
 #include <vector>
 
@@ -103,4 +104,23 @@ std::pair<double, double> fit_mohr_coulomb(const std::vector<double> &sigma_1, c
 /// Elastic and strength parameters of the curves; the moduli and angles are averaged over the
 /// confinements, the friction angles fitted across them.
 BiaxialParameters analyse_biaxial_curves(const std::vector<BiaxialCurve> &curves);
+
+/// The continuum (plane-strain, 3D isotropic elastic and Mohr-Coulomb) soil that reproduces the
+/// biaxial test's response, for a continuum run of the same soil (geohybrid pullout, mode = fem).
+/// The biaxial's moduli are those of the plane: E_2D = dq/d(eps_a) under a constant lateral stress
+/// and nu_2D = -d(eps_lat)/d(eps_a). A plane-strain continuum (eps_zz = 0) gives E_2D = E / (1 - nu^2)
+/// and nu_2D = nu / (1 - nu), so nu = nu_2D / (1 + nu_2D) and E = E_2D (1 - nu^2). The peak friction
+/// angle and the cohesion of the fit are plane-strain values already (sigma_1 and sigma_3 are the
+/// in-plane principal stresses), and so is the dilatancy angle; a negative cohesion or dilatancy
+/// angle of a fit is taken as 0, a dilatancy angle above the friction angle as the friction angle.
+struct ContinuumEquivalent
+{
+  double young_modulus = 0.0;         ///< E [Pa]
+  double poisson_ratio = 0.0;         ///< nu [-]
+  double friction_angle_deg = 0.0;    ///< phi (peak) [deg]
+  double cohesion = 0.0;              ///< c [Pa]
+  double dilatancy_angle_deg = 0.0;   ///< psi [deg]
+  std::string invalid_reason;         ///< empty if the continuum exists (e.g. nu_2D >= 1 has none)
+};
+ContinuumEquivalent continuum_equivalent(const BiaxialParameters &biaxial);
 } // namespace geohybrid::dem

@@ -1,11 +1,15 @@
 // `geohybrid biaxial` end to end on a tiny sample: the output contract (summary.json keys, one
 // CSV per confinement) and bad input refused with the parameter named, before any output.
 #include "apps/biaxial_command.h"
+#include "apps/pullout_fem_mode.h"
+#include "dem/biaxial_test.h"
 #include "text_file.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <fstream>
 #include <sstream>
 
@@ -63,6 +67,39 @@ TEST(BiaxialCommand, WritesTheContract)
   EXPECT_TRUE(fs::exists(d / "out" / "biaxial_20kPa.csv"));
   EXPECT_TRUE(fs::exists(d / "out" / "biaxial_50kPa.csv"));
   EXPECT_TRUE(fs::exists(d / "out" / "parameters.prm"));
+
+  // The continuum with the same response: dem::continuum_equivalent of the summary's figures, as
+  // a fragment that a pull-out input's subsection Continuum takes (declared as geohybrid pullout
+  // declares it), so that its fem mode runs the soil its dem mode runs.
+  const auto value = [&](const std::string &key) {
+    const auto at = text.str().find("\"" + key + "\": ");
+    return at == std::string::npos ? std::nan("") : std::stod(text.str().substr(at + key.size() + 4));
+  };
+  geohybrid::dem::BiaxialParameters measured;
+  measured.young_modulus = value("young_modulus_Pa");
+  measured.poisson_ratio = value("poisson_ratio");
+  measured.peak_friction_angle_deg = value("peak_friction_angle_deg");
+  measured.cohesion = value("cohesion_Pa");
+  measured.dilatancy_angle_deg = value("dilatancy_angle_deg");
+  const geohybrid::dem::ContinuumEquivalent expected = geohybrid::dem::continuum_equivalent(measured);
+  ASSERT_TRUE(expected.invalid_reason.empty()) << expected.invalid_reason;
+  ASSERT_TRUE(fs::exists(d / "out" / "continuum_soil.prm"));
+  dealii::ParameterHandler prm;
+  geohybrid::apps::declare_continuum_parameters(prm);
+  prm.parse_input((d / "out" / "continuum_soil.prm").string());
+  prm.enter_subsection("Continuum");
+  EXPECT_EQ(prm.get("soil model"), "Mohr-Coulomb");
+  // The summary carries 12 digits, the fragment 12: the same numbers to 1e-10.
+  EXPECT_NEAR(prm.get_double("Young modulus"), expected.young_modulus, 1e-10 * expected.young_modulus);
+  EXPECT_NEAR(prm.get_double("Poisson ratio"), expected.poisson_ratio, 1e-10);
+  EXPECT_NEAR(prm.get_double("friction angle"), expected.friction_angle_deg, 1e-9);
+  EXPECT_NEAR(prm.get_double("cohesion"), expected.cohesion, 1e-9 * std::max(1.0, expected.cohesion));
+  EXPECT_NEAR(prm.get_double("dilatancy angle"), expected.dilatancy_angle_deg, 1e-9);
+  prm.leave_subsection();
+  std::cout << "continuum of the tiny sample: E " << expected.young_modulus << " Pa, nu " << expected.poisson_ratio
+            << ", phi " << expected.friction_angle_deg << " deg, c " << expected.cohesion << " Pa, psi "
+            << expected.dilatancy_angle_deg << " deg (biaxial E_2D " << measured.young_modulus << ", nu_2D "
+            << measured.poisson_ratio << ")" << std::endl;
   fs::remove_all(d);
 }
 

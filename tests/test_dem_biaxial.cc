@@ -85,6 +85,47 @@ TEST(MohrCoulomb, FitRecoversAngleAndCohesion)
   EXPECT_EQ(c_one, 0.0);
 }
 
+// The continuum of the same soil: a plane-strain isotropic continuum (E, nu) in a biaxial test
+// has E_2D = E / (1 - nu^2) and nu_2D = nu / (1 - nu); continuum_equivalent inverts that. On the
+// hexagonal lattice above (nu_2D = (kn - ks) / (3 kn + ks)) it gives nu = (kn - ks) / (4 kn), the
+// plane-strain ratio of coupling/hexagonal_lattice.h, derived there from the lattice's Lame moduli.
+TEST(Biaxial, ContinuumEquivalentIsThePlaneStrainSoilWithTheSameResponse)
+{
+  BiaxialParameters b;
+  const double E = 20e6, nu = 0.3;
+  b.young_modulus = E / (1.0 - nu * nu);
+  b.poisson_ratio = nu / (1.0 - nu);
+  b.peak_friction_angle_deg = 38.4;
+  b.cohesion = 1e3;
+  b.dilatancy_angle_deg = 10.0;
+  ContinuumEquivalent c = continuum_equivalent(b);
+  EXPECT_TRUE(c.invalid_reason.empty()) << c.invalid_reason;
+  EXPECT_NEAR(c.young_modulus, E, 1e-9 * E);
+  EXPECT_NEAR(c.poisson_ratio, nu, 1e-14);
+  EXPECT_EQ(c.friction_angle_deg, 38.4);
+  EXPECT_EQ(c.cohesion, 1e3);
+  EXPECT_EQ(c.dilatancy_angle_deg, 10.0);
+
+  for (const double ratio : {0.1, 0.5, 1.0})
+    {
+      const double kn = 7e7, ks = ratio * kn;
+      b.poisson_ratio = (kn - ks) / (3.0 * kn + ks);
+      EXPECT_NEAR(continuum_equivalent(b).poisson_ratio, (kn - ks) / (4.0 * kn), 1e-14) << ratio;
+    }
+
+  // A fit's negative cohesion or dilatancy, or a dilatancy above the friction angle, is bounded.
+  b.cohesion = -50.0;
+  b.dilatancy_angle_deg = -2.0;
+  EXPECT_EQ(continuum_equivalent(b).cohesion, 0.0);
+  EXPECT_EQ(continuum_equivalent(b).dilatancy_angle_deg, 0.0);
+  b.dilatancy_angle_deg = 45.0;
+  EXPECT_EQ(continuum_equivalent(b).dilatancy_angle_deg, 38.4);
+  // A plane Poisson ratio of 1 or more has no plane-strain continuum (nu would reach 0.5).
+  b.poisson_ratio = 1.2;
+  c = continuum_equivalent(b);
+  EXPECT_NE(c.invalid_reason.find("Poisson ratio"), std::string::npos) << c.invalid_reason;
+}
+
 namespace
 {
 RedfSpec tiny_sample(double friction_deg)
