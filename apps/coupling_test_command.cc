@@ -156,9 +156,12 @@ CouplingTestInput parse_coupling_test(ParameterHandler &prm, const std::string &
   if (in.output_directory.empty())
     throw std::invalid_argument(where + ": 'output directory' is empty");
   in.method_name = prm.get("method");
-  for (const MethodChoice &choice : method_choices())
-    if (in.method_name == choice.name)
-      in.method = choice.make(prm, where);
+  const auto &choices = method_choices();
+  const auto choice = std::find_if(choices.begin(), choices.end(),
+                                   [&](const MethodChoice &c) { return in.method_name == c.name; });
+  if (choice == choices.end()) // the Selection pattern lists exactly the table's names
+    throw std::logic_error(where + ": 'method' = '" + in.method_name + "' passed the pattern but has no row");
+  in.method = choice->make(prm, where);
 
   bench::PatchGeometry &g = in.patch;
   prm.enter_subsection("Particles");
