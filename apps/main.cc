@@ -7,6 +7,7 @@
 //   geohybrid pullout FILE.prm             pull-out of a geosynthetic anchored in the INSA tank
 //   geohybrid pullout FILE.prm --seeds N   the same on N fills (seeds s, s+1, ...), averaged
 //   mpirun -np N geohybrid pullout FILE.prm  the same with 'mode = fem' on N MPI ranks
+//   geohybrid coupling-test FILE.prm       the coupling's patch, wave and energy benchmarks for one method
 //   geohybrid compare DIR1 DIR2 ... [--output FILE.png]   pull-out curves of result directories in one PNG
 //   geohybrid COMMAND --print-parameters   every parameter of COMMAND with default, unit, doc
 //
@@ -15,6 +16,7 @@
 #include "apps/biaxial_command.h"
 #include "apps/calibrate_command.h"
 #include "apps/compare_command.h"
+#include "apps/coupling_test_command.h"
 #include "apps/dem_command.h"
 #include "apps/pullout_command.h"
 #include "apps/pullout_seeds.h"
@@ -50,6 +52,8 @@ const std::map<std::string, Command> &commands()
     {"pullout", {"pull-out test of a geosynthetic in the INSA tank: simple run-out or wrap-around (mode = dem or fem)",
                  geohybrid::apps::declare_pullout_parameters,
                  [](const std::string &file, bool resume) { return geohybrid::apps::run_pullout_command(file, resume); }}},
+    {"coupling-test", {"DEM-FEM coupling benchmarks for one method: ghost forces, reflected wave energy, energy drift",
+                       geohybrid::apps::declare_coupling_test_parameters, geohybrid::apps::run_coupling_test_command}},
   };
   return table;
 }
@@ -66,7 +70,7 @@ void print_usage(std::ostream &out)
          "(written every 'Simulation/checkpoint interval' seconds and at the end); the end time\n"
          "may have been raised meanwhile.\n\ncommands:\n";
   for (const auto &[name, command] : commands())
-    out << "  " << name << std::string(12 - std::min<std::size_t>(11, name.size()), ' ') << command.summary << '\n';
+    out << "  " << name << std::string(15 - std::min<std::size_t>(14, name.size()), ' ') << command.summary << '\n';
 }
 } // namespace
 

@@ -1,11 +1,16 @@
 #pragma once
 // Shared set-up of the coupling tests: hexagonal lattices of equal discs and their contact law.
+#include "coupling/benchmark_patch.h"
 #include "dem/dem_system.h"
 
 #include <cmath>
 
 namespace geohybrid::coupling::testing
 {
+// The benchmarks' set-up (undamped_settings, the coupled patch) is library code, shared with
+// `geohybrid coupling-test`.
+using namespace geohybrid::coupling::benchmarks;
+
 /// A hexagonal lattice of `columns` x `rows` equal discs of radius r, rows along x, centres
 /// `spacing` apart (spacing < 2 r: every neighbour pair overlaps by 2 r - spacing), the first
 /// disc at `corner`. Odd rows are shifted by half a spacing.
@@ -32,13 +37,4 @@ inline dem::LinearContactLaw lattice_law(double kn, double ks)
   return dem::LinearContactLaw(c);
 }
 
-inline dem::DemSettings undamped_settings(double time_step = 0.0)
-{
-  dem::DemSettings s;
-  s.gravity = dem::Vec2(0.0, 0.0);
-  s.local_damping = 0.0;
-  s.time_step = time_step;
-  s.n_threads = 1;
-  return s;
-}
 } // namespace geohybrid::coupling::testing

@@ -1,0 +1,36 @@
+#pragma once
+// `geohybrid coupling-test FILE.prm` (issue 6): the coupling's benchmarks for one method, so that
+// users compare the methods with measured figures. It runs the patch test (ghost forces under a
+// uniform strain), a long wave through the band (the energy reflected) and an undamped coupled
+// run (the energy drift), all from coupling/coupling_benchmarks.h, and writes summary.json,
+// parameters.prm, energy_history.csv and wave_reflection.csv.
+#include "coupling/coupling_benchmarks.h"
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace geohybrid::apps
+{
+void declare_coupling_test_parameters(dealii::ParameterHandler &prm);
+
+/// What the input file asks for, read and checked.
+struct CouplingTestInput
+{
+  std::string output_directory;
+  std::string method_name; ///< as the input spells it
+  coupling::CouplingMethod method;
+  coupling::benchmarks::PatchGeometry patch; ///< of the patch test and the energy run
+  coupling::benchmarks::PlaneStrain strain;
+  coupling::benchmarks::StripSpec strip;     ///< of the wave
+  unsigned int n_energy_steps = 10000;
+};
+
+/// Reads the declared entries of `prm` (already parsed) and checks what the patterns cannot.
+/// Throws std::invalid_argument naming `where` (the input file) and the entry.
+CouplingTestInput parse_coupling_test(dealii::ParameterHandler &prm, const std::string &where);
+
+/// Parses `input_file`, runs the three benchmarks, then (only if all of them ran) writes the
+/// output directory. `resume` is refused: the run has no checkpoint (it lasts seconds).
+int run_coupling_test_command(const std::string &input_file, bool resume);
+} // namespace geohybrid::apps

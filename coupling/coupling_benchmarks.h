@@ -1,0 +1,127 @@
+#pragma once
+// The coupling's three benchmarks as functions that return their measured figures, so that the
+// tests (tests/test_coupling_*.cc) and `geohybrid coupling-test` run the same code:
+//   - the patch test: a uniform strain on both sides of the band, the ghost forces it leaves;
+//   - the energy of an undamped coupled run: its drift over many steps;
+//   - a long wave through the band: the fraction of its energy the band reflects.
+// Measured figures and their discussion: coupling/README.md.
+#include "coupling/benchmark_patch.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+namespace geohybrid::coupling::benchmarks
+{
+/// A uniform in-plane strain (small: the lattice is geometrically exact, the continuum linear) [-].
+struct PlaneStrain
+{
+  double xx = 0.0, yy = 0.0, xy = 0.0;
+};
+
+/// The patch strained uniformly by `strain` on both sides and coupled by `method`: the discs moved
+/// affinely (held, at constant velocity over 20 steps, so that their bonded contacts' tangential
+/// springs load), then released at rest; the continuum given u = eps x and the lattice's prestress
+/// -sqrt(3) kn delta0 / d (isotropic), then the coupled forces at t = 0 evaluated.
+CoupledPatch strained_patch(const CouplingMethod &method, const PlaneStrain &strain, const PatchGeometry &geometry = {});
+
+/// The largest residual forces of a strained patch, relative to |sigma| times the length each
+/// carries (the spacing d for a disc, the cell width for a node) [-].
+struct GhostForces
+{
+  double particles_outside_band = 0.0; ///< largest |F| on an interior disc of the particle-only region
+  double continuum_nodes = 0.0;        ///< largest |r_I| at an interior node, particles' forces projected
+  double band_particles = 0.0;         ///< largest |F| a band disc's own tie must carry
+  /// The figure of the patch test: the largest ghost force anywhere outside the ties.
+  double largest() const { return std::max(particles_outside_band, continuum_nodes); }
+};
+
+/// The residual of the constrained system at node I is r_I = f_ext,I - f_int,I + sum_p N_I(X_p)
+/// F_p: the forces on the band's discs reach the continuum through the constraint (the
+/// multipliers cancel in it), and it is the same for both methods. Discs and nodes whose
+/// neighbourhood reaches the patch's free surfaces (where the uniform stress has no traction to
+/// balance it) are left out.
+GhostForces ghost_forces(const CoupledPatch &patch, const PlaneStrain &strain);
+
+struct PatchTestResult
+{
+  GhostForces ghost;
+  std::size_t n_particles = 0, n_cells = 0;
+};
+PatchTestResult patch_test(const CouplingMethod &method, const PlaneStrain &strain, const PatchGeometry &geometry = {});
+
+/// One sample of an undamped coupled run's energies [J/m], at `time` [s].
+struct EnergySample
+{
+  double time = 0.0;
+  double relative_change = 0.0; ///< (E(t) - E(0)) / E(0) [-]
+  double particle_energy = 0.0, continuum_kinetic = 0.0, continuum_elastic = 0.0, coupling_energy = 0.0;
+};
+
+/// The energy of an undamped coupled run, sampled every 10 steps, relative to E(0): its drift
+/// (the mean over the last quarter of the run minus the mean over the first quarter), its largest
+/// deviation from E(0), the largest share of E(0) the continuum held.
+struct EnergyRecord
+{
+  double drift = 0.0, largest_deviation = 0.0, continuum_share = 0.0;
+  double time_step = 0.0; ///< [s]
+  std::vector<EnergySample> history;
+};
+
+/// A smooth pulse of x-velocity, amplitude x exp(-((x - 2 d) / 2 d)^2) [m/s], on the discs of the
+/// particle-only region of `patch` (x_c two spacings in, width two spacings): a wave that crosses
+/// the band.
+void launch_energy_pulse(CoupledPatch &patch, double amplitude);
+
+/// The patch at rest, a smooth pulse of x-velocity V exp(-((x - 2 d) / 2 d)^2), V = 1 mm/s, on
+/// the discs of the particle-only region (a wave that crosses the band), run undamped for
+/// `n_steps` steps of `time_step` (0: the stepper's own) [s].
+EnergyRecord energy_record(const CouplingMethod &method, unsigned int n_steps, double time_step = 0.0,
+                           const PatchGeometry &geometry = {});
+
+/// A pulse of x-velocity 1e-3 exp(-r^2 / width^2) [m/s]: 1D (r = x - x0) or a 2D blob round
+/// (x0, y0) [m].
+struct Pulse
+{
+  double x0 = 0.0, y0 = 0.0, width = 0.0;
+  bool blob = false;
+  double value(double x, double y) const;
+};
+
+/// The energy of the difference between the coupled run and a run of the particles alone over
+/// the whole patch (the reference: no band, no reflection), summed over the coupled run's free
+/// discs (kinetic, and the linearised springs of the contacts between them), relative to half
+/// the initial energy (a 1D pulse sends half of it toward the band; a 2D blob less: for it the
+/// fraction is a bound from above).
+struct WaveSample
+{
+  double time = 0.0;              ///< [s]
+  double reflected = 0.0;         ///< the difference energy in the free discs / half E(0) [-]
+  double in_continuum = 0.0;      ///< the continuum's kinetic + elastic energy / half E(0) [-]
+};
+struct WaveRecord
+{
+  double reflected = 0.0, transmitted = 0.0; ///< the last sample's
+  double time_step = 0.0;                    ///< [s]
+  unsigned int n_steps = 0;
+  std::size_t n_particles = 0, n_cells = 0;  ///< of the coupled run
+  std::vector<WaveSample> history;           ///< about 200 samples, the last at the end
+};
+
+/// The pulse launched on the free discs of the patch `g` at rest, run until the slowest wave of
+/// interest, at `speed` [m/s], has gone `travel` [m].
+WaveRecord crossing(const CouplingMethod &method, const PatchGeometry &g, const Pulse &pulse, double travel,
+                    double speed);
+
+/// A strip 6 rows high (3 cells over its height: the wave is 1D-like): particles over `length`
+/// spacings, a band of `band_width` spacings, the continuum `length` spacings beyond it in cells of
+/// `cell_size` spacings along the strip. The pulse, `pulse_width` spacings wide, starts halfway
+/// along the particle region; it is measured when it has run half `length` into the continuum, at
+/// the bar speed sqrt(E_2D / rho) (the long-wave speed of a strip with free sides).
+struct StripSpec
+{
+  double band_width = 4.0, pulse_width = 4.0, length = 40.0, cell_size = 1.0; ///< in spacings
+};
+PatchGeometry strip_geometry(const StripSpec &spec, const PatchGeometry &lattice = {});
+WaveRecord strip_crossing(const CouplingMethod &method, const StripSpec &spec, const PatchGeometry &lattice = {});
+} // namespace geohybrid::coupling::benchmarks

@@ -1,0 +1,192 @@
+// The patch test and the undamped energy run (coupling_benchmarks.h).
+#include "coupling_benchmarks.h"
+
+#include "coupling/hexagonal_lattice.h"
+
+#include <deal.II/base/function.h>
+#include <deal.II/dofs/dof_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace geohybrid::coupling::benchmarks
+{
+namespace
+{
+/// u(x) = eps x.
+class UniformStrain : public dealii::Function<2>
+{
+public:
+  explicit UniformStrain(const PlaneStrain &eps) : dealii::Function<2>(2), eps_(eps) {}
+  double value(const dealii::Point<2> &x, unsigned int c) const override
+  {
+    return c == 0 ? eps_.xx * x[0] + eps_.xy * x[1] : eps_.xy * x[0] + eps_.yy * x[1];
+  }
+
+private:
+  PlaneStrain eps_;
+};
+} // namespace
+
+CoupledPatch strained_patch(const CouplingMethod &method, const PlaneStrain &eps, const PatchGeometry &geometry)
+{
+  CoupledPatch patch;
+  patch.geometry = geometry;
+  const PatchGeometry &g = patch.geometry;
+  dem::ParticleSet discs = patch_particles(g);
+  for (std::size_t b = 0; b < discs.n_bodies(); ++b)
+    discs.fix_body(b);
+  patch.particles = std::make_unique<dem::DemSystem>(std::move(discs), bonded_lattice_law(g.kn, g.ks),
+                                                     undamped_settings(2e-7));
+  dem::DemSystem &system = *patch.particles;
+  system.initialise_forces();
+  system.bond_touching_contacts();
+  const unsigned int n_steps = 20;
+  const double duration = n_steps * system.time_step();
+  dem::ParticleSet &p = system.particles();
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    {
+      p.vx[b] = (eps.xx * p.x[b] + eps.xy * p.y[b]) / duration;
+      p.vy[b] = (eps.xy * p.x[b] + eps.yy * p.y[b]) / duration;
+    }
+  system.run_steps(n_steps);
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    {
+      p.inverse_mass[b] = 1.0 / p.mass[b];
+      p.inverse_inertia[b] = 1.0 / p.inertia[b];
+      p.vx[b] = p.vy[b] = p.omega[b] = 0.0;
+    }
+
+  patch.mesh = patch_mesh(g);
+  const fem::SoilModel soil = matching_soil(g);
+  patch.continuum = std::make_unique<fem::ExplicitSolver>(*patch.mesh, soil, fem::BoundaryConditions{},
+                                                          patch_continuum_settings(g));
+  const double prestress = -std::sqrt(3.0) * g.kn * (2.0 * g.radius - g.spacing()) / g.spacing();
+  const double nu = soil.elasticity().poisson_ratio();
+  patch.continuum->set_initial_stress(
+    [&](const dealii::Point<2> &) {
+      fem::StressTensor s;
+      s[0][0] = s[1][1] = prestress;
+      s[2][2] = 2.0 * nu * prestress;
+      return s;
+    },
+    "the lattice's prestress");
+  patch.continuum->set_initial_displacement(UniformStrain(eps));
+  patch.stepper = std::make_unique<CoupledStepper>(system, *patch.continuum, patch_band(g), method);
+  return patch;
+}
+
+GhostForces ghost_forces(const CoupledPatch &patch, const PlaneStrain &eps)
+{
+  const PatchGeometry &g = patch.geometry;
+  const HexagonalLatticeModuli m = hexagonal_lattice_moduli(g.kn, g.ks);
+  const double tr = eps.xx + eps.yy;
+  const double sxx = m.lame_lambda * tr + 2 * m.shear_modulus * eps.xx,
+               syy = m.lame_lambda * tr + 2 * m.shear_modulus * eps.yy, sxy = 2 * m.shear_modulus * eps.xy;
+  const double stress = std::sqrt(sxx * sxx + syy * syy + 2 * sxy * sxy);
+  const double d = g.spacing(), h = g.row_height();
+  const double cell_x = (g.continuum_end - g.band_start) * d / g.cells_x, cell_y = g.rows * h / g.cells_y;
+  const double y_bottom = -0.5 * h, y_top = (g.rows - 0.5) * h;
+
+  GhostForces ghost;
+  const dem::ParticleSet &p = patch.particles->particles();
+  const BandParticles &band = patch.stepper->band_particles();
+  std::vector<bool> tied(p.n_bodies(), false);
+  for (const std::uint32_t b : band.body)
+    tied[b] = true;
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    {
+      const bool surface = p.y[b] < 0.5 * h || p.y[b] > (g.rows - 1.5) * h || p.x[b] < 1.2 * d;
+      if (!surface && !tied[b] && p.inverse_mass[b] > 0.0) // driven particles: projected with the continuum's force
+        ghost.particles_outside_band = std::max(ghost.particles_outside_band, std::hypot(p.fx[b], p.fy[b]) / (stress * d));
+    }
+  const auto &continuum = *patch.continuum;
+  std::vector<double> residual(continuum.internal_force().locally_owned_size());
+  for (unsigned int i = 0; i < residual.size(); ++i)
+    residual[i] = continuum.external_force().local_element(i) - continuum.internal_force().local_element(i);
+  for (std::size_t q = 0; q < band.size(); ++q)
+    {
+      const std::uint32_t b = band.body[q];
+      const bool surface = p.y[b] < 0.5 * h || p.y[b] > (g.rows - 1.5) * h;
+      if (!surface)
+        ghost.band_particles = std::max(ghost.band_particles, std::hypot(p.fx[b], p.fy[b]) / (stress * d));
+      for (unsigned int k = 0; k < band.points.nodes_per_point(); ++k)
+        {
+          residual[band.points.x_dof(q, k)] += band.points.shape_value(q, k) * p.fx[b];
+          residual[band.points.y_dof(q, k)] += band.points.shape_value(q, k) * p.fy[b];
+        }
+    }
+  std::map<dealii::types::global_dof_index, dealii::Point<2>> support;
+  dealii::DoFTools::map_dofs_to_support_points(continuum.space().mapping(), continuum.space().dof_handler(), support);
+  for (const auto &[dof, x] : support)
+    {
+      const bool near_surface = x[1] < y_bottom + 1.5 * cell_y || x[1] > y_top - 1.5 * cell_y ||
+                                x[0] > g.continuum_end * d - 0.5 * cell_x;
+      if (!near_surface)
+        ghost.continuum_nodes = std::max(ghost.continuum_nodes, std::abs(residual[dof]) / (stress * cell_x));
+    }
+  return ghost;
+}
+
+PatchTestResult patch_test(const CouplingMethod &method, const PlaneStrain &strain, const PatchGeometry &geometry)
+{
+  const CoupledPatch patch = strained_patch(method, strain, geometry);
+  PatchTestResult result;
+  result.ghost = ghost_forces(patch, strain);
+  result.n_particles = patch.particles->particles().n_bodies();
+  result.n_cells = patch.mesh->n_active_cells();
+  return result;
+}
+
+void launch_energy_pulse(CoupledPatch &patch, double amplitude)
+{
+  const double d = patch.geometry.spacing();
+  dem::ParticleSet &p = patch.particles->particles();
+  std::vector<bool> tied(p.n_bodies(), false);
+  for (const auto b : patch.stepper->band_particles().body)
+    tied[b] = true;
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    if (!tied[b] && p.inverse_mass[b] > 0.0)
+      p.vx[b] = amplitude * std::exp(-std::pow((p.x[b] - 2.0 * d) / (2.0 * d), 2));
+}
+
+EnergyRecord energy_record(const CouplingMethod &method, unsigned int n_steps, double time_step,
+                           const PatchGeometry &geometry)
+{
+  CoupledPatch patch = coupled_patch_at_rest(method, geometry, undamped_settings(time_step));
+  launch_energy_pulse(patch, 1e-3);
+  CoupledStepper &stepper = *patch.stepper;
+  const double initial = stepper.diagnostics().total();
+  EnergyRecord record;
+  record.time_step = stepper.time_step();
+  const auto sample = [&](const CouplingDiagnostics &d) {
+    record.history.push_back({stepper.time(), (d.total() - initial) / initial, d.particle_energy, d.continuum_kinetic,
+                              d.continuum_elastic, d.coupling_energy});
+  };
+  sample(stepper.diagnostics());
+  double first = 0.0, last = 0.0;
+  unsigned int n_first = 0, n_last = 0;
+  for (unsigned int n = 1; n <= n_steps; ++n)
+    {
+      stepper.step();
+      if (n % 10 == 0)
+        {
+          const CouplingDiagnostics d = stepper.diagnostics();
+          sample(d);
+          const double relative = record.history.back().relative_change;
+          record.largest_deviation = std::max(record.largest_deviation, std::abs(relative));
+          record.continuum_share = std::max(record.continuum_share, (d.continuum_kinetic + d.continuum_elastic) / initial);
+          if (4 * n <= n_steps)
+            first += relative, ++n_first;
+          if (4 * n > 3 * n_steps)
+            last += relative, ++n_last;
+        }
+    }
+  if (n_first == 0 || n_last == 0)
+    throw std::invalid_argument("energy run: " + std::to_string(n_steps) +
+                                " steps leave a quarter of the run without a sample (one every 10 steps); run at least 40");
+  record.drift = last / n_last - first / n_first;
+  return record;
+}
+} // namespace geohybrid::coupling::benchmarks
