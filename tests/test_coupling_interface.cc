@@ -1,10 +1,9 @@
 // Method 3 of issue 6, the non-overlapping interface (coupling/interface_wall.h): closed-form
-// disc-edge contacts first, then the patch test, a long wave through the interface, the energy
-// of an undamped coupled run and the coupling's force balance.
-#include "test_coupling_patch.h"
+// disc-edge contacts, the patch test, the stable step and bad input. The dynamics (waves, energy,
+// force balance) are in test_coupling_interface_dynamics.cc.
+#include "test_coupling_interface_lattice.h"
 
 #include <deal.II/base/function.h>
-#include <deal.II/grid/grid_generator.h>
 
 #include <gtest/gtest.h>
 
@@ -19,28 +18,6 @@ using namespace geohybrid::coupling::testing;
 
 namespace
 {
-using Mesh = dealii::parallel::distributed::Triangulation<fem::dim>;
-constexpr dealii::types::boundary_id top = 3; // subdivided_hyper_rectangle, colorized: y = max
-
-fem::SoilModel elastic_soil(double young_modulus, double poisson_ratio)
-{
-  fem::SoilParameters s;
-  s.kind = fem::SoilModelKind::linear_elastic;
-  s.young_modulus = young_modulus;
-  s.poisson_ratio = poisson_ratio;
-  return fem::SoilModel(s);
-}
-
-InterfaceCoupling interface_law(double kn, double ks, double friction_angle_deg)
-{
-  InterfaceCoupling c;
-  c.boundary_id = top;
-  c.contact.normal_stiffness = kn;
-  c.contact.shear_stiffness = ks;
-  c.contact.friction_angle_deg = friction_angle_deg;
-  return c;
-}
-
 /// The external force on the x or y DoF of the interface node at `x` [N/m].
 double node_force(const fem::ExplicitSolver &continuum, const InterfaceWall &wall, const Vec2 &x, int component)
 {
@@ -118,66 +95,6 @@ public:
 private:
   double eps_[2][2];
 };
-
-/// A hexagonal lattice of `columns` x `rows` bonded discs (the coupling tests' lattice: r = 5 mm,
-/// kn = 1e8, ks = 0.5e8 N/m/m) standing on the matching Q1 continuum below y = 0, in square cells
-/// of one spacing, `cells_down` deep; its bottom row at y = r less the overlap with which the
-/// interface carries the lattice's prestress (the vertical force sqrt(3) kn delta0 of the two
-/// diagonal contacts the bottom row lacks, delta0 = 2 r - spacing). The bottom row's discs sit
-/// midway between the interface's nodes (x = i d, nodes at (k - 1/2) d).
-struct StandingLattice
-{
-  PatchGeometry g;
-  unsigned int columns = 0, rows = 0, cells_down = 0;
-  InterfaceCoupling interface;
-  std::unique_ptr<Mesh> mesh;
-  std::unique_ptr<fem::ExplicitSolver> continuum;
-  std::unique_ptr<dem::DemSystem> particles;
-  std::unique_ptr<CoupledStepper> stepper;
-
-  double bottom_row() const
-  {
-    return g.radius - std::sqrt(3.0) * g.kn * (2.0 * g.radius - g.spacing()) / interface.contact.normal_stiffness;
-  }
-  /// `extra_rows_below` (even: the rows' stagger is kept) extends the lattice down past the interface.
-  dem::ParticleSet discs(unsigned int extra_rows_below = 0) const
-  {
-    return hexagonal_lattice(columns, rows + extra_rows_below, g.radius, g.spacing(), g.density,
-                             Vec2(0.0, bottom_row() - extra_rows_below * g.row_height()));
-  }
-};
-
-/// The interface springs that stand for the material between the bottom row's centres and the
-/// edge (a gap r carrying a length d of the interface): kn = (lambda + 2 mu) d / r (a uniaxial
-/// strain eps_yy then gives each disc exactly the traction sigma_yy d), ks = mu d / r.
-InterfaceCoupling matched_interface(const PatchGeometry &g)
-{
-  const HexagonalLatticeModuli m = hexagonal_lattice_moduli(g.kn, g.ks);
-  return interface_law((m.lame_lambda + 2.0 * m.shear_modulus) * g.spacing() / g.radius,
-                       m.shear_modulus * g.spacing() / g.radius, 30.0);
-}
-/// The project's default for a wall: the particles' own kn and ks.
-InterfaceCoupling particles_law_interface(const PatchGeometry &g) { return interface_law(g.kn, g.ks, 30.0); }
-
-StandingLattice standing_lattice(unsigned int columns, unsigned int rows, unsigned int cells_down,
-                                 const InterfaceCoupling &interface)
-{
-  StandingLattice s;
-  s.columns = columns;
-  s.rows = rows;
-  s.cells_down = cells_down;
-  s.interface = interface;
-  s.mesh = std::make_unique<Mesh>(MPI_COMM_WORLD);
-  const double d = s.g.spacing();
-  dealii::GridGenerator::subdivided_hyper_rectangle(*s.mesh, {columns, cells_down}, dealii::Point<2>(-0.5 * d, -1.0 * cells_down * d),
-                                                    dealii::Point<2>((columns - 0.5) * d, 0.0), true);
-  const HexagonalLatticeModuli m = hexagonal_lattice_moduli(s.g.kn, s.g.ks);
-  fem::ExplicitSettings settings;
-  settings.density = s.g.density * m.density_factor;
-  s.continuum = std::make_unique<fem::ExplicitSolver>(
-    *s.mesh, elastic_soil(m.young_modulus_plane_strain, m.poisson_ratio_plane_strain), fem::BoundaryConditions{}, settings);
-  return s;
-}
 
 /// Ghost forces of the strained standing lattice relative to |sigma| times the carried length
 /// (the spacing for a disc, the cell size, also d, for a node), on the bottom row's discs and the
@@ -283,5 +200,60 @@ TEST(InterfaceWall, PatchTestGhostForces)
   const double wall_closed_form = std::abs(syy - g.kn * uniaxial[1][1] * g.radius / g.spacing()) / wall_law.stress;
   EXPECT_NEAR(wall_law.bottom_discs, wall_closed_form, 1e-4 * wall_closed_form);
   EXPECT_NEAR(wall_law.interface_nodes, wall_closed_form, 1e-4 * wall_closed_form);
+}
+// The stable step: the interface springs' squared frequency (interface_wall.cc) added to the
+// larger of the two sides' (Weyl), in closed form for the standing lattice: a disc's row
+// 2 x 2 max(kn / m, ks (1/m + r^2 / I)) = 4 max(kn, 3 ks) / m for a solid disc (r^2 / I = 2 / m), a
+// node's row 2 max(kn, ks) (1 + 2 d / (2 x 1.8 r)) / M_I; the step is the safety factor x 2 / omega.
+TEST(InterfaceWall, StableStepIncludesTheInterfaceSprings)
+{
+  const PatchGeometry g;
+  StandingLattice s = standing_lattice(6, 5, 4, matched_interface(g));
+  s.particles = std::make_unique<dem::DemSystem>(s.discs(), bonded_lattice_law(g.kn, g.ks), undamped_settings());
+  const double particles_omega = 2.0 / s.particles->critical_time_step();
+  const double continuum_omega = 2.0 / s.continuum->critical_time_step();
+  s.stepper = std::make_unique<CoupledStepper>(*s.particles, *s.continuum, s.interface);
+  const double kn = s.interface.contact.normal_stiffness, mass = g.density * M_PI * g.radius * g.radius;
+  const double disc_row = 4.0 * std::max(kn, 3.0 * s.interface.contact.shear_stiffness) / mass;
+  double node_row = 0.0;
+  for (const InterfaceNode &n : s.stepper->interface_wall()->nodes())
+    {
+      const bool end = n.reference.x() < 0.0 || n.reference.x() > (s.columns - 1) * g.spacing();
+      const double adjacent = (end ? 1.0 : 2.0) * g.spacing();
+      node_row = std::max(node_row, 2.0 * kn * (1.0 + adjacent / (2.0 * 1.8 * g.radius)) * n.inverse_mass);
+    }
+  const double omega2 = std::pow(std::max(particles_omega, continuum_omega), 2) + std::max(disc_row, node_row);
+  EXPECT_NEAR(s.stepper->time_step(), 0.8 * 2.0 / std::sqrt(omega2), 1e-12 * s.stepper->time_step());
+  EXPECT_LT(s.stepper->time_step(), 0.8 * 2.0 / std::max(particles_omega, continuum_omega));
+}
+
+TEST(InterfaceWall, BadInputNamesTheProblem)
+{
+  const auto message_of = [](auto make) {
+    try
+      {
+        make();
+      }
+    catch (const std::invalid_argument &e)
+      {
+        return std::string(e.what());
+      }
+    return std::string("no exception");
+  };
+  const PatchGeometry g;
+  StandingLattice s = standing_lattice(6, 5, 4, matched_interface(g));
+  s.particles = std::make_unique<dem::DemSystem>(s.discs(), bonded_lattice_law(g.kn, g.ks), undamped_settings());
+  InterfaceCoupling bonded = s.interface;
+  bonded.contact.tensile_strength = 1.0;
+  EXPECT_NE(message_of([&] { CoupledStepper(*s.particles, *s.continuum, bonded); }).find("tensile strength"),
+            std::string::npos);
+  InterfaceCoupling nowhere = s.interface;
+  nowhere.boundary_id = 7;
+  EXPECT_NE(message_of([&] { CoupledStepper(*s.particles, *s.continuum, nowhere); }).find("boundary id"),
+            std::string::npos);
+  const OverlapBand band(Vec2(0.0, 0.0), Vec2(0.0, -1.0), g.spacing());
+  EXPECT_NE(message_of([&] { CoupledStepper(*s.particles, *s.continuum, band, CouplingMethod(s.interface)); })
+              .find("no overlap band"),
+            std::string::npos);
 }
 } // namespace
