@@ -100,8 +100,8 @@ void CoupledStepper::start()
 {
   dem::DemSystem &particles = particles_;
   fem::ExplicitSolver &continuum = continuum_;
-  // One step for both: the smaller stable step, lowered by the penalty springs (Weyl: the
-  // squared frequencies of the uncoupled sides and of the springs add at most).
+  // One step for both: the smaller stable step, lowered by the penalty or interface springs (Weyl:
+  // the squared frequencies of the uncoupled sides and of the springs add at most).
   const double particles_omega = 2.0 / particles.critical_time_step();
   const double continuum_omega = 2.0 / continuum.critical_time_step();
   const double springs = std::visit(
@@ -138,30 +138,31 @@ CoupledStepper::~CoupledStepper() { particles_.set_force_hook({}); }
 
 void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_time)
 {
-  // The driven particles' contact forces go to the continuum's nodes first: the multipliers'
-  // predictors must see every force the continuum will feel.
   forces_ = CouplingForceSums{};
-  if (auto *interface = std::get_if<InterfaceWall>(&tie_))
-    {
-      // The first evaluation (impulse time dt / 2) follows no drift: no tangential increment.
-      interface->apply(particles, continuum_, impulse_time < time_step_ ? 0.0 : time_step_, forces_);
-      return;
-    }
-  const unsigned int n_nodes = band_->driven_points.nodes_per_point();
-  for (std::size_t q = 0; q < band_->driven_body.size(); ++q)
-    {
-      const std::uint32_t b = band_->driven_body[q];
-      for (unsigned int k = 0; k < n_nodes; ++k)
-        {
-          const double N = band_->driven_points.shape_value(q, k);
-          continuum_.add_external_force(band_->driven_points.x_dof(q, k), N * particles.fx[b]);
-          continuum_.add_external_force(band_->driven_points.y_dof(q, k), N * particles.fy[b]);
-        }
-    }
   std::visit(
     [&](auto &tie) {
-      if constexpr (!std::is_same_v<std::decay_t<decltype(tie)>, InterfaceWall>)
-        tie.apply(*band_, particles, continuum_, impulse_time, forces_);
+      if constexpr (std::is_same_v<std::decay_t<decltype(tie)>, InterfaceWall>)
+        {
+          // The first evaluation (impulse time dt / 2) follows no drift: no tangential increment.
+          tie.apply(particles, continuum_, impulse_time < time_step_ ? 0.0 : time_step_, forces_);
+        }
+      else
+        {
+          // The driven particles' contact forces go to the continuum's nodes first: the
+          // multipliers' predictors must see every force the continuum will feel.
+          const unsigned int n_nodes = band_->driven_points.nodes_per_point();
+          for (std::size_t q = 0; q < band_->driven_body.size(); ++q)
+            {
+              const std::uint32_t b = band_->driven_body[q];
+              for (unsigned int k = 0; k < n_nodes; ++k)
+                {
+                  const double N = band_->driven_points.shape_value(q, k);
+                  continuum_.add_external_force(band_->driven_points.x_dof(q, k), N * particles.fx[b]);
+                  continuum_.add_external_force(band_->driven_points.y_dof(q, k), N * particles.fy[b]);
+                }
+            }
+          tie.apply(*band_, particles, continuum_, impulse_time, forces_);
+        }
     },
     tie_);
 }
