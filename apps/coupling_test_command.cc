@@ -47,7 +47,11 @@ struct MethodChoice
 };
 
 constexpr std::size_t n_methods = 2;
-static_assert(std::variant_size_v<CouplingMethod> == n_methods,
+// Method 3 (coupling::InterfaceCoupling, the non-overlapping interface) has no row yet: its
+// scenarios (a lattice standing on the continuum, tests/test_coupling_interface*.cc) are not yet
+// benchmark functions of coupling_benchmarks.h, so the command cannot run it.
+constexpr std::size_t n_methods_without_row = 1;
+static_assert(std::variant_size_v<CouplingMethod> == n_methods + n_methods_without_row,
               "every alternative of coupling::CouplingMethod needs its row in method_choices()");
 
 const std::array<MethodChoice, n_methods> &method_choices()

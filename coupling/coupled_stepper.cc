@@ -6,14 +6,14 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 namespace geohybrid::coupling
 {
 namespace
 {
 /// Checks what the stepper needs of both sides before it touches them.
-const OverlapBand &checked(const dem::DemSystem &particles, const fem::ExplicitSolver &continuum,
-                           const OverlapBand &band)
+void check_sides(const dem::DemSystem &particles, const fem::ExplicitSolver &continuum)
 {
   const std::string where = "coupled stepper: ";
   // The particles may have run before (a packing made, a strain applied): between two steps their
@@ -25,7 +25,23 @@ const OverlapBand &checked(const dem::DemSystem &particles, const fem::ExplicitS
     throw std::invalid_argument(where + "parameter 'local damping coefficient' of the particles must be 0");
   if (continuum.settings().damping.local != 0.0 || continuum.settings().damping.mass_proportional != 0.0)
     throw std::invalid_argument(where + "the continuum's 'local damping' and 'mass-proportional damping' must be 0");
+}
+
+const OverlapBand &checked(const dem::DemSystem &particles, const fem::ExplicitSolver &continuum,
+                           const OverlapBand &band, const CouplingMethod &method)
+{
+  check_sides(particles, continuum);
+  if (std::holds_alternative<InterfaceCoupling>(method))
+    throw std::invalid_argument("coupled stepper: the interface coupling (method 3) has no overlap band: "
+                                "construct the stepper without one");
   return band;
+}
+
+const InterfaceCoupling &checked(const dem::DemSystem &particles, const fem::ExplicitSolver &continuum,
+                                 const InterfaceCoupling &method)
+{
+  check_sides(particles, continuum);
+  return method;
 }
 
 /// The weights go on before the band's particles are gathered: the multipliers' matrix needs the
@@ -48,7 +64,7 @@ BandParticles weighted_band(dem::DemSystem &particles, fem::ExplicitSolver &cont
   return BandParticles(band, p, continuum.space(), continuum.displacement(), 2.0 * extent);
 }
 
-std::variant<LagrangeTie, PenaltyTie> make_tie(const CouplingMethod &method, const BandParticles &band,
+std::variant<LagrangeTie, PenaltyTie, InterfaceWall> make_tie(const CouplingMethod &method, const BandParticles &band,
                                                const dem::DemSystem &particles, const fem::ExplicitSolver &continuum,
                                                const OverlapBand &geometry)
 {
@@ -62,46 +78,93 @@ CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &c
                                const CouplingMethod &method)
   : particles_(particles)
   , continuum_(continuum)
-  , band_geometry_(checked(particles, continuum, band))
+  , band_geometry_(checked(particles, continuum, band, method))
   , band_(weighted_band(particles, continuum, band))
-  , tie_(make_tie(method, band_, particles, continuum, band))
+  , tie_(make_tie(method, *band_, particles, continuum, band))
 {
-  for (std::size_t q = 0; q < band_.driven_body.size(); ++q)
-    driven_tied_displacement_.push_back(band_.driven_points.interpolate(continuum.displacement(), q));
-  // One step for both: the smaller stable step, lowered by the penalty springs (Weyl: the
-  // squared frequencies of the uncoupled sides and of the springs add at most).
+  for (std::size_t q = 0; q < band_->driven_body.size(); ++q)
+    driven_tied_displacement_.push_back(band_->driven_points.interpolate(continuum.displacement(), q));
+  start();
+}
+
+CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const InterfaceCoupling &method)
+  : particles_(particles)
+  , continuum_(continuum)
+  , tie_(std::in_place_type<InterfaceWall>, checked(particles, continuum, method), particles.particles(), continuum,
+         particles.skin())
+{
+  start();
+}
+
+void CoupledStepper::start()
+{
+  dem::DemSystem &particles = particles_;
+  fem::ExplicitSolver &continuum = continuum_;
+  // One step for both: the smaller stable step, lowered by the penalty or interface springs (Weyl:
+  // the squared frequencies of the uncoupled sides and of the springs add at most).
   const double particles_omega = 2.0 / particles.critical_time_step();
   const double continuum_omega = 2.0 / continuum.critical_time_step();
   const double springs = std::visit(
-    [&](const auto &tie) { return tie.squared_frequency_bound(band_, particles.particles(), continuum); }, tie_);
+    [&](const auto &tie) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(tie)>, InterfaceWall>)
+        return tie.squared_frequency_bound(particles.particles());
+      else
+        return tie.squared_frequency_bound(*band_, particles.particles(), continuum);
+    },
+    tie_);
   const double omega = std::sqrt(std::pow(std::max(particles_omega, continuum_omega), 2) + springs);
   const double safety = std::min(particles.settings().time_step_safety, continuum.settings().safety_factor);
   time_step_ = std::min({safety * 2.0 / omega, particles.time_step(), continuum.time_step()});
   particles.set_time_step(time_step_);
   continuum.set_time_step(time_step_);
   particles.set_force_hook([this](dem::ParticleSet &p, double impulse_time) { apply_coupling(p, impulse_time); });
-  particles.initialise_forces(); // the forces at t = 0, the coupling's included
+  // The forces at t = 0, the coupling's included. The weights of methods 1 and 2 made the
+  // particles' forces stale; without weights (method 3) particles evaluated before keep theirs,
+  // and the coupling's are added here as the hook would (no drift yet: impulse time dt / 2).
+  if (particles.forces_initialised())
+    apply_coupling(particles.particles(), 0.5 * time_step_);
+  else
+    particles.initialise_forces();
+}
+
+const BandParticles &CoupledStepper::band_particles() const
+{
+  if (!band_)
+    throw std::logic_error("coupled stepper: the interface coupling (method 3) has no band particles");
+  return *band_;
 }
 
 CoupledStepper::~CoupledStepper() { particles_.set_force_hook({}); }
 
 void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_time)
 {
-  // The driven particles' contact forces go to the continuum's nodes first: the multipliers'
-  // predictors must see every force the continuum will feel.
-  const unsigned int n_nodes = band_.driven_points.nodes_per_point();
-  for (std::size_t q = 0; q < band_.driven_body.size(); ++q)
-    {
-      const std::uint32_t b = band_.driven_body[q];
-      for (unsigned int k = 0; k < n_nodes; ++k)
-        {
-          const double N = band_.driven_points.shape_value(q, k);
-          continuum_.add_external_force(band_.driven_points.x_dof(q, k), N * particles.fx[b]);
-          continuum_.add_external_force(band_.driven_points.y_dof(q, k), N * particles.fy[b]);
-        }
-    }
   forces_ = CouplingForceSums{};
-  std::visit([&](auto &tie) { tie.apply(band_, particles, continuum_, impulse_time, forces_); }, tie_);
+  std::visit(
+    [&](auto &tie) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(tie)>, InterfaceWall>)
+        {
+          // The first evaluation (impulse time dt / 2) follows no drift: no tangential increment.
+          tie.apply(particles, continuum_, impulse_time < time_step_ ? 0.0 : time_step_, forces_);
+        }
+      else
+        {
+          // The driven particles' contact forces go to the continuum's nodes first: the
+          // multipliers' predictors must see every force the continuum will feel.
+          const unsigned int n_nodes = band_->driven_points.nodes_per_point();
+          for (std::size_t q = 0; q < band_->driven_body.size(); ++q)
+            {
+              const std::uint32_t b = band_->driven_body[q];
+              for (unsigned int k = 0; k < n_nodes; ++k)
+                {
+                  const double N = band_->driven_points.shape_value(q, k);
+                  continuum_.add_external_force(band_->driven_points.x_dof(q, k), N * particles.fx[b]);
+                  continuum_.add_external_force(band_->driven_points.y_dof(q, k), N * particles.fy[b]);
+                }
+            }
+          tie.apply(*band_, particles, continuum_, impulse_time, forces_);
+        }
+    },
+    tie_);
 }
 
 void CoupledStepper::step()
@@ -110,11 +173,11 @@ void CoupledStepper::step()
   // The driven particles drift (fixed bodies keep their velocity) to where the continuum now is.
   dem::ParticleSet &p = particles_.particles();
   const double dt = particles_.time_step();
-  for (std::size_t q = 0; q < band_.driven_body.size(); ++q)
+  for (std::size_t q = 0; band_ && q < band_->driven_body.size(); ++q)
     {
-      const std::uint32_t b = band_.driven_body[q];
-      const Vec2 target = band_.driven_reference_position[q] +
-                          band_.driven_points.interpolate(continuum_.displacement(), q) - driven_tied_displacement_[q];
+      const std::uint32_t b = band_->driven_body[q];
+      const Vec2 target = band_->driven_reference_position[q] +
+                          band_->driven_points.interpolate(continuum_.displacement(), q) - driven_tied_displacement_[q];
       p.vx[b] = (target.x() - p.x[b]) / dt;
       p.vy[b] = (target.y() - p.y[b]) / dt;
     }

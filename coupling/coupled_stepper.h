@@ -11,10 +11,12 @@
 //      force hook and before its second half kick, the coupling's forces at t_{n+1} are computed
 //      from both sides at t_{n+1} (the continuum is already there) and added to the particles'
 //      forces and to the continuum's external force, which its next step applies.
-// Set-up applies the energy weights to both sides (Xiao & Belytschko 2004), gathers the band's
+// Methods 1 and 2 (an overlap band): set-up applies the energy weights to both sides (Xiao & Belytschko 2004), gathers the band's
 // particles (tied, and driven past the band: band_particles.h), and evaluates the forces at t = 0
 // with the coupling. Before the DEM steps, the driven particles are given the velocity that takes
 // them to the continuum's new displacement.
+// Method 3 (the non-overlapping interface, interface_wall.h) has no band, no weights and no driven
+// particles: the force hook evaluates the disc-edge contacts at t_{n+1}, both sides being there.
 //
 // Limits (checked, std::invalid_argument): one MPI rank; both sides undamped (local and
 // mass-proportional damping would need their own predictors); set up before the continuum steps
@@ -23,11 +25,13 @@
 // initial stress and without body force or loads on the continuum.
 #include "coupling/band_particles.h"
 #include "coupling/coupling_method.h"
+#include "coupling/interface_wall.h"
 #include "coupling/lagrange_tie.h"
 #include "coupling/penalty_tie.h"
 #include "dem/dem_system.h"
 #include "fem/explicit_solver.h"
 
+#include <optional>
 #include <variant>
 
 namespace geohybrid::coupling
@@ -39,7 +43,7 @@ struct CouplingDiagnostics
   double particle_kinetic = 0.0;   ///< its kinetic part
   double continuum_kinetic = 0.0;  ///< 1/2 v_n . M v_n, v_n the full-step velocity
   double continuum_elastic = 0.0;  ///< 1/2 u . f_int (weighted)
-  double coupling_energy = 0.0;    ///< penalty springs; 0 for the multipliers
+  double coupling_energy = 0.0;    ///< penalty springs; interface contacts' springs and their dissipation; 0 for the multipliers
   double total() const { return particle_energy + continuum_kinetic + continuum_elastic + coupling_energy; }
   CouplingForceSums forces;        ///< the last coupling forces on each side
 };
@@ -50,8 +54,12 @@ public:
   /// Ties `particles` and `continuum` (both must outlive the stepper, which must not move: it is
   /// the particles' force hook). Throws std::invalid_argument as described above, or from the
   /// band (no particle in it, a particle outside the mesh, a particle in the continuum-only region).
+  /// Methods 1 and 2 (`method` must not be an InterfaceCoupling: that one has no band).
   CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
                  const CouplingMethod &method);
+  /// Method 3: the particles touch the continuum's boundary `method.boundary_id` (no overlap).
+  /// Throws std::invalid_argument as above, or from InterfaceWall.
+  CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const InterfaceCoupling &method);
   CoupledStepper(const CoupledStepper &) = delete;
   CoupledStepper &operator=(const CoupledStepper &) = delete;
   ~CoupledStepper();
@@ -61,19 +69,24 @@ public:
   double time_step() const { return time_step_; }
   double time() const { return continuum_.time(); }
 
-  const BandParticles &band_particles() const { return band_; }
+  /// Methods 1 and 2; throws std::logic_error for method 3 (no band).
+  const BandParticles &band_particles() const;
+  /// Method 3's interface; nullptr for methods 1 and 2.
+  const InterfaceWall *interface_wall() const { return std::get_if<InterfaceWall>(&tie_); }
   CouplingDiagnostics diagnostics() const;
   /// Method 1: the velocity gap left by the last correction (round-off) [m/s]; 0 for method 2.
   double largest_velocity_gap() const;
 
 private:
   void apply_coupling(dem::ParticleSet &particles, double impulse_time);
+  /// What both constructors end with: the common time step, the hook, the forces at t = 0.
+  void start();
 
   dem::DemSystem &particles_;
   fem::ExplicitSolver &continuum_;
-  OverlapBand band_geometry_;
-  BandParticles band_;
-  std::variant<LagrangeTie, PenaltyTie> tie_;
+  std::optional<OverlapBand> band_geometry_; ///< methods 1 and 2
+  std::optional<BandParticles> band_;        ///< methods 1 and 2
+  std::variant<LagrangeTie, PenaltyTie, InterfaceWall> tie_;
   CouplingForceSums forces_;
   std::vector<Vec2> driven_tied_displacement_; ///< u(X) of each driven particle when tied [m]
   double time_step_ = 0.0;

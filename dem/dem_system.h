@@ -149,6 +149,9 @@ public:
   /// Evaluates the contact forces of the current configuration if not done yet (the first
   /// step() does it otherwise); contacts, wall forces and stresses are then available.
   void initialise_forces();
+  /// Whether the forces of the current configuration have been evaluated (initialise_forces() or
+  /// a step since the last change that made them stale).
+  bool forces_initialised() const { return forces_initialised_; }
 
   /// Makes every contact that currently touches a bonded contact (used to glue packings).
   void bond_touching_contacts();
