@@ -74,6 +74,8 @@ public:
   /// Method 3's interface; nullptr for methods 1 and 2.
   const InterfaceWall *interface_wall() const { return std::get_if<InterfaceWall>(&tie_); }
   CouplingDiagnostics diagnostics() const;
+  /// The last coupling forces' sums on each side (what diagnostics() reports, without its energies).
+  const CouplingForceSums &coupling_forces() const { return forces_; }
   /// Method 1: the velocity gap left by the last correction (round-off) [m/s]; 0 for method 2.
   double largest_velocity_gap() const;
 

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace geohybrid::coupling::benchmarks
@@ -18,6 +19,15 @@ struct PlaneStrain
 {
   double xx = 0.0, yy = 0.0, xy = 0.0;
 };
+
+/// The bonded lattice of `discs` (kn, ks of `g`) strained affinely by `strain` about the origin:
+/// held at constant velocity for 20 steps (so that the bonded contacts' tangential springs load),
+/// then released at rest.
+std::unique_ptr<dem::DemSystem> strained_lattice(dem::ParticleSet discs, const PatchGeometry &g, const PlaneStrain &strain);
+/// The continuum given u = eps x and the lattice's isotropic prestress -sqrt(3) kn delta0 / d.
+void strain_continuum(fem::ExplicitSolver &continuum, const PatchGeometry &g, const PlaneStrain &strain);
+/// |sigma| = sqrt(sigma : sigma) of the lattice's in-plane law under `strain` [Pa].
+double stress_norm(const PatchGeometry &g, const PlaneStrain &strain);
 
 /// The patch strained uniformly by `strain` on both sides and coupled by `method`: the discs moved
 /// affinely (held, at constant velocity over 20 steps, so that their bonded contacts' tangential
@@ -65,8 +75,15 @@ struct EnergyRecord
 {
   double drift = 0.0, largest_deviation = 0.0, continuum_share = 0.0;
   double time_step = 0.0; ///< [s]
+  /// Over every step: the largest |sum of the coupling forces on both sides| (round-off if the
+  /// coupling conserves momentum) and the largest |sum on the particles| [N/m].
+  double largest_force_imbalance = 0.0, largest_coupling_force = 0.0;
   std::vector<EnergySample> history;
 };
+
+/// The energy of `stepper`'s undamped run of `n_steps` steps from its present state (the record
+/// above; E(0) is the energy now). Throws std::invalid_argument below 40 steps.
+EnergyRecord undamped_energy_record(CoupledStepper &stepper, unsigned int n_steps);
 
 /// A smooth pulse of x-velocity, amplitude x exp(-((x - 2 d) / 2 d)^2) [m/s], on the discs of the
 /// particle-only region of `patch` (x_c two spacings in, width two spacings): a wave that crosses
@@ -108,6 +125,13 @@ struct WaveRecord
   std::vector<WaveSample> history;           ///< about 200 samples, the last at the end
 };
 
+/// The energy [J/m] of the difference between a coupled run's discs and the same discs in a run
+/// of the lattice alone (`reference`; `coupled_of[r]`: the coupled body of reference body r, -1
+/// if it is not counted): kinetic, and the linearised springs (kn, ks of `g`) of the reference's
+/// touching contacts between counted discs.
+double difference_energy(const dem::DemSystem &coupled, const dem::DemSystem &reference,
+                         const std::vector<long> &coupled_of, const PatchGeometry &g);
+
 /// The pulse launched on the free discs of the patch `g` at rest, run until the slowest wave of
 /// interest, at `speed` [m/s], has gone `travel` [m].
 WaveRecord crossing(const CouplingMethod &method, const PatchGeometry &g, const Pulse &pulse, double travel,
@@ -124,4 +148,43 @@ struct StripSpec
 };
 PatchGeometry strip_geometry(const StripSpec &spec, const PatchGeometry &lattice = {});
 WaveRecord strip_crossing(const CouplingMethod &method, const StripSpec &spec, const PatchGeometry &lattice = {});
+
+// ---- Method 3, the non-overlapping interface: a lattice standing on the continuum ----
+// (standing_lattice.h; the same measures as above, across the interface y = 0 instead of a band.)
+
+/// Method 3's patch test: 14 x 9 discs standing on 14 x 6 cells of one spacing, strained
+/// affinely by `strain` as in strained_patch (held, then released at rest), the continuum given
+/// u = eps x and the lattice's prestress, the interface's forces at t = 0 evaluated. The ghost
+/// forces relative to |sigma| d (a disc and a node both carry one spacing): the largest |F| on
+/// the bottom row's discs and the largest residual f_ext - f_int at the interface's nodes, both
+/// more than 1.5 spacings from the free sides. Closed form with the matched springs
+/// (coupling/README.md): round-off for a uniaxial eps_yy, lambda eps_xx / |sigma| otherwise (one
+/// normal spring per disc has no Poisson coupling). Throws std::invalid_argument if strain.xy is
+/// not 0 (a contact formed at the strained state starts with an unloaded tangential spring: the
+/// set-up cannot strain the interface in shear) or if the strain is 0.
+struct InterfacePatchTestResult
+{
+  double bottom_discs = 0.0, interface_nodes = 0.0; ///< [-]
+  double stress = 0.0;                              ///< |sigma| of the strain [Pa]
+  std::size_t n_particles = 0, n_cells = 0;
+  double largest() const { return std::max(bottom_discs, interface_nodes); }
+};
+InterfacePatchTestResult interface_patch_test(const InterfaceCoupling &interface, const PlaneStrain &strain,
+                                              const PatchGeometry &lattice = {});
+
+/// Method 3's long wave: the standing strip of `spec` (standing_strip), a Gaussian pulse of
+/// downward velocity 1e-3 exp(-((y - y0) / s)^2) [m/s] on every disc, y0 = length / 2 spacings
+/// above the bottom row, s = pulse_width spacings (its downward half a compression that crosses
+/// the interface: the interface carries no tension). Measured as `crossing`: the difference from
+/// the lattice extended below the interface in place of the continuum, over all the coupled
+/// run's discs, relative to half the initial energy, when the pulse has run half `length` into
+/// the continuum at the bar speed.
+WaveRecord interface_strip_crossing(const InterfaceCoupling &interface, const StripSpec &spec,
+                                    const PatchGeometry &lattice = {});
+
+/// Method 3's undamped energy run: the standing strip of `spec` with the pulse of
+/// interface_strip_crossing, `n_steps` steps of `time_step` (0: the coupled stable step) [s]. The
+/// pulse crosses, reflects at the continuum's free bottom as a tension that opens the interface.
+EnergyRecord interface_energy_record(const InterfaceCoupling &interface, const StripSpec &spec, unsigned int n_steps,
+                                     double time_step = 0.0, const PatchGeometry &lattice = {});
 } // namespace geohybrid::coupling::benchmarks

@@ -26,8 +26,8 @@ void launch(dem::DemSystem &system, const std::vector<bool> &moving, const Pulse
       p.vx[b] = pulse.value(p.x[b], p.y[b]);
 }
 
-/// The energy [J/m] of the difference between the coupled run's free discs and the same discs
-/// in the reference (`coupled_of`: the coupled body of each reference body, -1 if not free).
+} // namespace
+
 double difference_energy(const dem::DemSystem &coupled, const dem::DemSystem &reference,
                          const std::vector<long> &coupled_of, const PatchGeometry &g)
 {
@@ -55,7 +55,6 @@ double difference_energy(const dem::DemSystem &coupled, const dem::DemSystem &re
     }
   return difference;
 }
-} // namespace
 
 WaveRecord crossing(const CouplingMethod &method, const PatchGeometry &g, const Pulse &pulse, double travel,
                     double speed)

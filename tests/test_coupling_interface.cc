@@ -3,7 +3,7 @@
 // force balance) are in test_coupling_interface_dynamics.cc.
 #include "test_coupling_interface_lattice.h"
 
-#include <deal.II/base/function.h>
+#include <deal.II/grid/grid_generator.h>
 
 #include <gtest/gtest.h>
 
@@ -80,92 +80,6 @@ TEST(InterfaceWall, DiscPressedOnAnEdgeAndSlidingAlongIt)
   EXPECT_NEAR(wall.dissipated(), mu * force * (ks * vx * dt - mu * force) / ks, 1e-9 * mu * force * vx * dt);
 }
 
-/// u(x) = eps x.
-class UniformStrain : public dealii::Function<2>
-{
-public:
-  explicit UniformStrain(const double (&eps)[2][2]) : dealii::Function<2>(2)
-  {
-    for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b)
-        eps_[a][b] = eps[a][b];
-  }
-  double value(const dealii::Point<2> &x, unsigned int c) const override { return eps_[c][0] * x[0] + eps_[c][1] * x[1]; }
-
-private:
-  double eps_[2][2];
-};
-
-/// Ghost forces of the strained standing lattice relative to |sigma| times the carried length
-/// (the spacing for a disc, the cell size, also d, for a node), on the bottom row's discs and the
-/// interface's nodes away from the free sides.
-struct InterfaceGhostForces
-{
-  double bottom_discs = 0.0, interface_nodes = 0.0, stress = 0.0;
-};
-InterfaceGhostForces strained_standing_lattice(const InterfaceCoupling &interface, const double (&eps)[2][2])
-{
-  StandingLattice s = standing_lattice(14, 9, 6, interface);
-  const PatchGeometry &g = s.g;
-  const double d = g.spacing(), h = g.row_height();
-  // The lattice strained affinely about the origin (held at constant velocity for 20 steps, so that
-  // the bonded contacts' tangential springs load), then released at rest; the continuum given
-  // u = eps x (its edge y = 0 moves with the same field) and the lattice's isotropic prestress.
-  dem::ParticleSet discs = s.discs();
-  for (std::size_t b = 0; b < discs.n_bodies(); ++b)
-    discs.fix_body(b);
-  s.particles = std::make_unique<dem::DemSystem>(std::move(discs), bonded_lattice_law(g.kn, g.ks), undamped_settings(2e-7));
-  dem::DemSystem &system = *s.particles;
-  system.initialise_forces();
-  system.bond_touching_contacts();
-  const unsigned int n_steps = 20;
-  const double duration = n_steps * system.time_step();
-  dem::ParticleSet &p = system.particles();
-  for (std::size_t b = 0; b < p.n_bodies(); ++b)
-    {
-      p.vx[b] = (eps[0][0] * p.x[b] + eps[0][1] * p.y[b]) / duration;
-      p.vy[b] = (eps[1][0] * p.x[b] + eps[1][1] * p.y[b]) / duration;
-    }
-  system.run_steps(n_steps);
-  for (std::size_t b = 0; b < p.n_bodies(); ++b)
-    {
-      p.inverse_mass[b] = 1.0 / p.mass[b];
-      p.inverse_inertia[b] = 1.0 / p.inertia[b];
-      p.vx[b] = p.vy[b] = p.omega[b] = 0.0;
-    }
-  const double prestress = -std::sqrt(3.0) * g.kn * (2.0 * g.radius - d) / d;
-  const double nu = s.continuum->soil().elasticity().poisson_ratio();
-  s.continuum->set_initial_stress(
-    [&](const dealii::Point<2> &) {
-      fem::StressTensor t;
-      t[0][0] = t[1][1] = prestress;
-      t[2][2] = 2.0 * nu * prestress;
-      return t;
-    },
-    "the lattice's prestress");
-  s.continuum->set_initial_displacement(UniformStrain(eps));
-  s.stepper = std::make_unique<CoupledStepper>(system, *s.continuum, s.interface); // forces at t = 0
-
-  const HexagonalLatticeModuli m = hexagonal_lattice_moduli(g.kn, g.ks);
-  const double tr = eps[0][0] + eps[1][1];
-  const double sxx = m.lame_lambda * tr + 2 * m.shear_modulus * eps[0][0],
-               syy = m.lame_lambda * tr + 2 * m.shear_modulus * eps[1][1], sxy = 2 * m.shear_modulus * eps[0][1];
-  InterfaceGhostForces ghost;
-  ghost.stress = std::sqrt(sxx * sxx + syy * syy + 2 * sxy * sxy);
-  const double x_low = 1.5 * d, x_high = (s.columns - 2.5) * d;
-  for (std::size_t b = 0; b < p.n_bodies(); ++b)
-    if (p.y[b] < s.bottom_row() + 0.5 * h && p.x[b] > x_low && p.x[b] < x_high)
-      ghost.bottom_discs = std::max(ghost.bottom_discs, std::hypot(p.fx[b], p.fy[b]) / (ghost.stress * d));
-  const fem::ExplicitSolver &c = *s.continuum;
-  for (const InterfaceNode &n : s.stepper->interface_wall()->nodes())
-    if (n.reference.x() > x_low && n.reference.x() < x_high)
-      for (const unsigned int dof : {n.x_dof, n.y_dof})
-        ghost.interface_nodes = std::max(ghost.interface_nodes, std::abs(c.external_force().local_element(dof) -
-                                                                         c.internal_force().local_element(dof)) /
-                                                                  (ghost.stress * d));
-  return ghost;
-}
-
 // The patch test of method 3. A single normal spring per disc replaces the two diagonal contacts
 // the bottom row lacks, so a uniform strain is carried exactly only if the spring's force follows
 // sigma_yy d: with the matched kn = (lambda + 2 mu) d / r the discs and the nodes (each node gets
@@ -182,24 +96,26 @@ TEST(InterfaceWall, PatchTestGhostForces)
 {
   const PatchGeometry g;
   const HexagonalLatticeModuli m = hexagonal_lattice_moduli(g.kn, g.ks);
-  const double uniaxial[2][2] = {{0.0, 0.0}, {0.0, -1e-7}};
-  const InterfaceGhostForces exact = strained_standing_lattice(matched_interface(g), uniaxial);
-  const double issue[2][2] = {{1e-7, 0.0}, {0.0, -0.4e-7}};
-  const InterfaceGhostForces poisson = strained_standing_lattice(matched_interface(g), issue);
-  const InterfaceGhostForces wall_law = strained_standing_lattice(particles_law_interface(g), uniaxial);
+  const PlaneStrain uniaxial{0.0, -1e-7, 0.0};
+  const InterfacePatchTestResult exact = interface_patch_test(matched_interface(g), uniaxial);
+  const PlaneStrain issue{1e-7, -0.4e-7, 0.0};
+  const InterfacePatchTestResult poisson = interface_patch_test(matched_interface(g), issue);
+  const InterfacePatchTestResult wall_law = interface_patch_test(particles_law_interface(g), uniaxial);
   std::cout << "interface patch, matched kn: uniaxial discs " << exact.bottom_discs << ", nodes "
             << exact.interface_nodes << "; strain (1e-7, -0.4e-7): discs " << poisson.bottom_discs << ", nodes "
             << poisson.interface_nodes << "; the particles' kn, uniaxial: discs " << wall_law.bottom_discs
             << ", nodes " << wall_law.interface_nodes << std::endl;
   EXPECT_LT(exact.bottom_discs, 1e-6);
   EXPECT_LT(exact.interface_nodes, 1e-6);
-  const double poisson_closed_form = m.lame_lambda * issue[0][0] / poisson.stress;
+  const double poisson_closed_form = m.lame_lambda * issue.xx / poisson.stress;
   EXPECT_NEAR(poisson.bottom_discs, poisson_closed_form, 1e-4 * poisson_closed_form);
   EXPECT_NEAR(poisson.interface_nodes, poisson_closed_form, 1e-4 * poisson_closed_form);
-  const double syy = (m.lame_lambda + 2.0 * m.shear_modulus) * uniaxial[1][1];
-  const double wall_closed_form = std::abs(syy - g.kn * uniaxial[1][1] * g.radius / g.spacing()) / wall_law.stress;
+  const double syy = (m.lame_lambda + 2.0 * m.shear_modulus) * uniaxial.yy;
+  const double wall_closed_form = std::abs(syy - g.kn * uniaxial.yy * g.radius / g.spacing()) / wall_law.stress;
   EXPECT_NEAR(wall_law.bottom_discs, wall_closed_form, 1e-4 * wall_closed_form);
   EXPECT_NEAR(wall_law.interface_nodes, wall_closed_form, 1e-4 * wall_closed_form);
+  // Shear cannot be applied (a contact formed at the strained state has an unloaded tangential spring).
+  EXPECT_THROW(interface_patch_test(matched_interface(g), PlaneStrain{1e-7, -0.4e-7, 0.3e-7}), std::invalid_argument);
 }
 // The stable step: the interface springs' squared frequency (interface_wall.cc) added to the
 // larger of the two sides' (Weyl), in closed form for the standing lattice: a disc's row
@@ -208,7 +124,7 @@ TEST(InterfaceWall, PatchTestGhostForces)
 TEST(InterfaceWall, StableStepIncludesTheInterfaceSprings)
 {
   const PatchGeometry g;
-  StandingLattice s = standing_lattice(6, 5, 4, matched_interface(g));
+  StandingLattice s = standing_lattice(g, 6, 5, 4, matched_interface(g));
   s.particles = std::make_unique<dem::DemSystem>(s.discs(), bonded_lattice_law(g.kn, g.ks), undamped_settings());
   const double particles_omega = 2.0 / s.particles->critical_time_step();
   const double continuum_omega = 2.0 / s.continuum->critical_time_step();
@@ -241,7 +157,7 @@ TEST(InterfaceWall, BadInputNamesTheProblem)
     return std::string("no exception");
   };
   const PatchGeometry g;
-  StandingLattice s = standing_lattice(6, 5, 4, matched_interface(g));
+  StandingLattice s = standing_lattice(g, 6, 5, 4, matched_interface(g));
   s.particles = std::make_unique<dem::DemSystem>(s.discs(), bonded_lattice_law(g.kn, g.ks), undamped_settings());
   InterfaceCoupling bonded = s.interface;
   bonded.contact.tensile_strength = 1.0;
