@@ -12,10 +12,14 @@
 //     region once the pulse is well into the continuum, over the incident energy.
 //   - energy_drift_relative: an undamped coupled run of a pulse crossing the band; the mean
 //     relative energy change over the last quarter of the run minus that over the first quarter.
+// Methods 1 and 2 run them on a lattice and a continuum overlapping in a band, method 3 (the
+// non-overlapping interface) on a lattice standing on the continuum; each summary states its
+// definitions (coupling_test_benchmarks.cc).
 // Everything is read and checked, and the three benchmarks run, before the output directory is
 // made: a failed run leaves nothing, and a directory with summary.json is a finished run.
 #include "coupling_test_command.h"
 
+#include "coupling_test_benchmarks.h"
 #include "run_directory.h"
 
 #include <algorithm>
@@ -39,39 +43,64 @@ namespace bench = coupling::benchmarks;
 namespace
 {
 /// The methods the input may choose, by name: a new method is one more row here (and one more
-/// alternative of coupling::CouplingMethod), its own parameters read by `make` from the file.
+/// alternative of coupling::CouplingMethod, and its scenarios in run_benchmarks), its own
+/// parameters read by `make` from the file (`lattice`: the particles' parameters, already read).
 struct MethodChoice
 {
   const char *name;
-  std::function<CouplingMethod(ParameterHandler &, const std::string &where)> make;
+  std::function<CouplingMethod(ParameterHandler &, const std::string &where, const bench::PatchGeometry &lattice)> make;
 };
 
-constexpr std::size_t n_methods = 2;
-// Method 3 (coupling::InterfaceCoupling, the non-overlapping interface) has no row yet: its
-// scenarios (a lattice standing on the continuum, tests/test_coupling_interface*.cc) are not yet
-// benchmark functions of coupling_benchmarks.h, so the command cannot run it.
-constexpr std::size_t n_methods_without_row = 1;
-static_assert(std::variant_size_v<CouplingMethod> == n_methods + n_methods_without_row,
+constexpr std::size_t n_methods = 3;
+static_assert(std::variant_size_v<CouplingMethod> == n_methods,
               "every alternative of coupling::CouplingMethod needs its row in method_choices()");
+
+/// Rethrows what `make` throws as std::invalid_argument naming the input and the subsection.
+template <typename Make>
+CouplingMethod checked(const std::string &where, const char *subsection, Make make)
+{
+  try
+    {
+      return make();
+    }
+  catch (const std::invalid_argument &e)
+    {
+      throw std::invalid_argument(where + ", subsection " + subsection + ": " + e.what());
+    }
+}
 
 const std::array<MethodChoice, n_methods> &method_choices()
 {
   static const std::array<MethodChoice, n_methods> choices{{
-    {"Lagrange multipliers", [](ParameterHandler &, const std::string &) { return CouplingMethod(coupling::LagrangeMultiplierCoupling{}); }},
+    {"Lagrange multipliers",
+     [](ParameterHandler &, const std::string &, const bench::PatchGeometry &) {
+       return CouplingMethod(coupling::LagrangeMultiplierCoupling{});
+     }},
     {"penalty",
-     [](ParameterHandler &prm, const std::string &where) {
+     [](ParameterHandler &prm, const std::string &where, const bench::PatchGeometry &) {
        prm.enter_subsection("Penalty");
-       coupling::PenaltyCoupling penalty{prm.get_double("factor")};
+       const coupling::PenaltyCoupling penalty{prm.get_double("factor")};
        prm.leave_subsection();
-       try
-         {
-           penalty.validate();
-         }
-       catch (const std::invalid_argument &e)
-         {
-           throw std::invalid_argument(where + ", subsection Penalty: " + e.what());
-         }
-       return CouplingMethod(penalty);
+       return checked(where, "Penalty", [&] {
+         penalty.validate();
+         return CouplingMethod(penalty);
+       });
+     }},
+    // The interface springs relative to the matched ones (coupling/standing_lattice.h), which
+    // depend on the lattice: kn = (lambda + 2 mu) d / r, ks = mu d / r.
+    {"non-overlapping interface",
+     [](ParameterHandler &prm, const std::string &where, const bench::PatchGeometry &lattice) {
+       prm.enter_subsection("Interface");
+       const double normal_factor = prm.get_double("normal stiffness factor");
+       const double shear_factor = prm.get_double("shear stiffness factor");
+       const double friction_angle = prm.get_double("friction angle");
+       prm.leave_subsection();
+       return checked(where, "Interface", [&] {
+         const coupling::InterfaceCoupling interface =
+           bench::matched_interface(lattice, normal_factor, shear_factor, friction_angle);
+         interface.validate();
+         return CouplingMethod(interface);
+       });
      }},
   }};
   return choices;
@@ -94,9 +123,11 @@ void declare_coupling_test_parameters(ParameterHandler &prm)
   prm.declare_entry("output directory", "output/coupling_test", Patterns::Anything(),
                     "Directory for all results, created if needed, relative to the working directory [-]");
   prm.declare_entry("method", "Lagrange multipliers", Patterns::Selection(method_selection()),
-                    "How the particles are tied to the continuum in the overlap band: Lagrange multipliers (the "
-                    "bridging domain of Xiao & Belytschko 2004: velocities equal, exactly) or penalty (springs "
-                    "between the displacements, subsection Penalty) [-]");
+                    "How the particles are coupled to the continuum: Lagrange multipliers (the bridging domain of "
+                    "Xiao & Belytschko 2004 in an overlap band: velocities equal, exactly), penalty (springs between "
+                    "the displacements in the band, subsection Penalty) or non-overlapping interface (no band: the "
+                    "continuum's boundary edges are deformable walls the discs touch, subsection Interface; its "
+                    "benchmarks are a lattice standing on the continuum, coupling/README.md) [-]");
 
   prm.enter_subsection("Particles");
   prm.declare_entry("normal stiffness", text(g.kn), Patterns::Double(1.0, 1e14),
@@ -126,13 +157,27 @@ void declare_coupling_test_parameters(ParameterHandler &prm)
                     "modulus, d the spacing, w the band width); stiffer lowers the time step [-]");
   prm.leave_subsection();
 
+  prm.enter_subsection("Interface");
+  prm.declare_entry("normal stiffness factor", "1", Patterns::Double(1e-3, 1e3),
+                    "method = non-overlapping interface: the disc-edge normal stiffness over the matched (lambda + "
+                    "2 mu) d / r (lambda, mu the lattice's moduli, d the spacing, r the radius), which carries sigma_yy "
+                    "d exactly under a uniaxial strain; the particles' own kn is 1/3 of it for kn = 2 ks [-]");
+  prm.declare_entry("shear stiffness factor", "1", Patterns::Double(1e-3, 1e3),
+                    "method = non-overlapping interface: the disc-edge tangential stiffness over the matched mu d / r [-]");
+  prm.declare_entry("friction angle", "30", Patterns::Double(0.0, 89.0),
+                    "method = non-overlapping interface: the disc-edge Coulomb friction angle (the interface is "
+                    "frictional and carries no tension) [deg]");
+  prm.leave_subsection();
+
   prm.enter_subsection("Patch test");
   prm.declare_entry("strain xx", "1e-7", Patterns::Double(-1e-3, 1e-3),
                     "Uniform strain eps_xx applied to both sides (small: the lattice is geometrically exact, the "
                     "continuum linear) [-]");
   prm.declare_entry("strain yy", "-0.4e-7", Patterns::Double(-1e-3, 1e-3), "Uniform strain eps_yy [-]");
   prm.declare_entry("strain xy", "0.3e-7", Patterns::Double(-1e-3, 1e-3),
-                    "Uniform (tensorial) shear strain eps_xy [-]");
+                    "Uniform (tensorial) shear strain eps_xy; left out by method = non-overlapping interface (a "
+                    "disc-edge contact formed at the strained state starts with an unloaded tangential spring), "
+                    "whose applied strain the summary states [-]");
   prm.leave_subsection();
 
   prm.enter_subsection("Wave");
@@ -159,14 +204,6 @@ CouplingTestInput parse_coupling_test(ParameterHandler &prm, const std::string &
   in.output_directory = prm.get("output directory");
   if (in.output_directory.empty())
     throw std::invalid_argument(where + ": 'output directory' is empty");
-  in.method_name = prm.get("method");
-  const auto &choices = method_choices();
-  const auto choice = std::find_if(choices.begin(), choices.end(),
-                                   [&](const MethodChoice &c) { return in.method_name == c.name; });
-  if (choice == choices.end()) // the Selection pattern lists exactly the table's names
-    throw std::logic_error(where + ": 'method' = '" + in.method_name + "' passed the pattern but has no row");
-  in.method = choice->make(prm, where);
-
   bench::PatchGeometry &g = in.patch;
   prm.enter_subsection("Particles");
   g.kn = prm.get_double("normal stiffness");
@@ -174,6 +211,14 @@ CouplingTestInput parse_coupling_test(ParameterHandler &prm, const std::string &
   g.radius = prm.get_double("disc radius");
   g.density = prm.get_double("density");
   prm.leave_subsection();
+
+  in.method_name = prm.get("method");
+  const auto &choices = method_choices();
+  const auto choice = std::find_if(choices.begin(), choices.end(),
+                                   [&](const MethodChoice &c) { return in.method_name == c.name; });
+  if (choice == choices.end()) // the Selection pattern lists exactly the table's names
+    throw std::logic_error(where + ": 'method' = '" + in.method_name + "' passed the pattern but has no row");
+  in.method = choice->make(prm, where, g);
 
   // The patch: 12 rows, the band 5.3 spacings in (an untied particle region of five columns), the
   // continuum four spacings past the band, cells of about `cell size` both ways.
@@ -194,6 +239,18 @@ CouplingTestInput parse_coupling_test(ParameterHandler &prm, const std::string &
   if (in.strain.xx == 0.0 && in.strain.yy == 0.0 && in.strain.xy == 0.0)
     throw std::invalid_argument(where + ": 'Patch test/strain xx', 'strain yy' and 'strain xy' are all 0: the ghost "
                                 "forces are measured relative to the stress of a non-zero strain");
+  // Method 3's set-up cannot strain the interface in shear (standing_lattice.h): it applies the
+  // input's eps_xx and eps_yy, and says so in the summary; it does not trade eps_xx (whose
+  // Poisson coupling the interface lacks: the ghost force lambda eps_xx / |sigma|) for a strain
+  // that hides it.
+  in.patch_strain = in.strain;
+  if (std::holds_alternative<coupling::InterfaceCoupling>(in.method))
+    {
+      in.patch_strain.xy = 0.0;
+      if (in.strain.xx == 0.0 && in.strain.yy == 0.0)
+        throw std::invalid_argument(where + ": 'Patch test/strain xx' and 'strain yy' are both 0: method = "
+                                    "non-overlapping interface leaves out 'strain xy', so its patch test has no strain");
+    }
 
   prm.enter_subsection("Wave");
   in.strip.band_width = g.band_width;
@@ -257,67 +314,66 @@ int run_coupling_test_command(const std::string &input_file, bool resume)
 
   // ---- the three benchmarks, in memory: nothing is written if one of them fails ----
   const auto start = std::chrono::steady_clock::now();
-  const auto running = [&](const char *what, auto &&run) {
+  const BenchmarkRunning running = [&](const char *what, const std::function<void()> &run) {
     try
       {
-        return run();
+        run();
       }
     catch (const std::exception &e)
       {
         throw std::runtime_error(where + ", method '" + in.method_name + "', " + what + ": " + e.what());
       }
   };
-  const bench::PatchTestResult patch =
-    running("patch test", [&] { return bench::patch_test(in.method, in.strain, in.patch); });
-  std::cout << "coupling-test (" << in.method_name << "): patch test, largest ghost force " << patch.ghost.largest()
-            << " (untied discs " << patch.ghost.particles_outside_band << ", continuum nodes "
-            << patch.ghost.continuum_nodes << ")" << std::endl;
-  const bench::WaveRecord wave = running("wave", [&] { return bench::strip_crossing(in.method, in.strip, in.patch); });
-  std::cout << "coupling-test (" << in.method_name << "): wave, reflected energy fraction " << wave.reflected
-            << " (" << wave.transmitted << " in the continuum, " << wave.n_steps << " steps)" << std::endl;
-  const bench::EnergyRecord energy =
-    running("energy run", [&] { return bench::energy_record(in.method, in.n_energy_steps, 0.0, in.patch); });
-  std::cout << "coupling-test (" << in.method_name << "): energy drift " << energy.drift << " over "
-            << in.n_energy_steps << " undamped steps (largest deviation " << energy.largest_deviation << ")"
+  const BenchmarkFigures f = run_benchmarks(in, running);
+  const double ghost = std::max(f.ghost_discs, f.ghost_nodes);
+  std::cout << "coupling-test (" << in.method_name << "): patch test (strain " << in.patch_strain.xx << ", "
+            << in.patch_strain.yy << ", " << in.patch_strain.xy << "), largest ghost force " << ghost << " (discs "
+            << f.ghost_discs << ", continuum nodes " << f.ghost_nodes << ")" << std::endl;
+  std::cout << "coupling-test (" << in.method_name << "): wave, reflected energy fraction " << f.wave.reflected
+            << " (" << f.wave.transmitted << " in the continuum, " << f.wave.n_steps << " steps)" << std::endl;
+  std::cout << "coupling-test (" << in.method_name << "): energy drift " << f.energy.drift << " over "
+            << in.n_energy_steps << " undamped steps (largest deviation " << f.energy.largest_deviation << ")"
             << std::endl;
   const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // ---- the results; summary.json last ----
   const std::filesystem::path out = prepare_output_directory(in.output_directory);
   write_resolved_parameters(prm, out);
-  write_energy_history(out / "energy_history.csv", energy.history);
-  write_wave_history(out / "wave_reflection.csv", wave.history);
+  write_energy_history(out / "energy_history.csv", f.energy.history);
+  write_wave_history(out / "wave_reflection.csv", f.wave.history);
 
   Summary summary;
   summary.set("method", in.method_name);
-  summary.set("max_ghost_force_relative", patch.ghost.largest());
-  summary.set("max_ghost_force_relative_definition",
-              "patch test under a uniform strain: the largest force on an interior untied disc (relative to |sigma| d) "
-              "or residual at an interior continuum node, f_ext - f_int + sum_p N_I(X_p) F_p (relative to |sigma| "
-              "times the cell width)");
-  summary.set("ghost_force_untied_discs_relative", patch.ghost.particles_outside_band);
-  summary.set("ghost_force_continuum_nodes_relative", patch.ghost.continuum_nodes);
-  summary.set("reflected_energy_fraction", wave.reflected);
-  summary.set("reflected_energy_fraction_definition",
-              "a Gaussian velocity pulse crossing the band of a 6-row strip: the energy of the difference from a run of "
-              "the particles alone (no band), over the particle-only region's discs once the pulse is half the strip "
-              "length into the continuum, over the incident (right-going, half the initial) energy");
-  summary.set("wave_energy_in_continuum_fraction", wave.transmitted);
-  summary.set("energy_drift_relative", energy.drift);
-  summary.set("energy_drift_relative_definition",
-              "undamped coupled run of a pulse crossing the band: mean of (E(t) - E(0)) / E(0) over the last quarter of "
-              "the steps minus its mean over the first quarter, sampled every 10 steps");
-  summary.set("energy_largest_deviation_relative", energy.largest_deviation);
-  summary.set("energy_continuum_share_max", energy.continuum_share);
+  if (const auto *interface = std::get_if<coupling::InterfaceCoupling>(&in.method))
+    {
+      summary.set("interface_normal_stiffness_N_per_m_per_m", interface->contact.normal_stiffness);
+      summary.set("interface_shear_stiffness_N_per_m_per_m", interface->contact.shear_stiffness);
+    }
+  summary.set("max_ghost_force_relative", ghost);
+  summary.set("max_ghost_force_relative_definition", f.ghost_definition);
+  summary.set("patch_strain_xx", in.patch_strain.xx);
+  summary.set("patch_strain_yy", in.patch_strain.yy);
+  summary.set("patch_strain_xy", in.patch_strain.xy);
+  summary.set("ghost_force_untied_discs_relative", f.ghost_discs);
+  summary.set("ghost_force_continuum_nodes_relative", f.ghost_nodes);
+  summary.set("reflected_energy_fraction", f.wave.reflected);
+  summary.set("reflected_energy_fraction_definition", f.wave_definition);
+  summary.set("wave_energy_in_continuum_fraction", f.wave.transmitted);
+  summary.set("energy_drift_relative", f.energy.drift);
+  summary.set("energy_drift_relative_definition", f.energy_definition);
+  summary.set("energy_largest_deviation_relative", f.energy.largest_deviation);
+  summary.set("energy_continuum_share_max", f.energy.continuum_share);
+  summary.set("coupling_force_imbalance_max_N_per_m", f.energy.largest_force_imbalance);
+  summary.set("coupling_force_max_N_per_m", f.energy.largest_coupling_force);
   summary.set("n_energy_steps", static_cast<double>(in.n_energy_steps));
-  summary.set("n_particles", static_cast<double>(patch.n_particles));
-  summary.set("n_cells", static_cast<double>(patch.n_cells));
-  summary.set("n_particles_cells_definition", "of the patch (patch test and energy run); the strip's are wave_n_*");
-  summary.set("wave_n_particles", static_cast<double>(wave.n_particles));
-  summary.set("wave_n_cells", static_cast<double>(wave.n_cells));
-  summary.set("wave_n_steps", static_cast<double>(wave.n_steps));
-  summary.set("time_step_patch_s", energy.time_step);
-  summary.set("time_step_wave_s", wave.time_step);
+  summary.set("n_particles", static_cast<double>(f.n_particles));
+  summary.set("n_cells", static_cast<double>(f.n_cells));
+  summary.set("n_particles_cells_definition", "of the patch test; the wave's are wave_n_*");
+  summary.set("wave_n_particles", static_cast<double>(f.wave.n_particles));
+  summary.set("wave_n_cells", static_cast<double>(f.wave.n_cells));
+  summary.set("wave_n_steps", static_cast<double>(f.wave.n_steps));
+  summary.set("time_step_energy_run_s", f.energy.time_step);
+  summary.set("time_step_wave_s", f.wave.time_step);
   summary.set("wall_time_s", wall_time);
   summary.write(out / "summary.json");
   std::cout << "coupling-test (" << in.method_name << "): results in " << out.string() << " (" << number(wall_time, 3)
