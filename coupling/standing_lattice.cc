@@ -18,10 +18,15 @@ double StandingLattice::bottom_row() const
 dem::ParticleSet StandingLattice::discs(unsigned int extra_rows_below) const
 {
   dem::ParticleSet p;
-  const double d = g.spacing(), h = g.row_height(), y0 = bottom_row() - extra_rows_below * h;
+  // Row k counted from the bottom row: the coupled lattice's discs sit at the same coordinates,
+  // to the last bit, in the extended one (the wave's reference starts with no difference).
+  const double d = g.spacing(), h = g.row_height();
   for (unsigned int j = 0; j < rows + extra_rows_below; ++j)
     for (unsigned int i = 0; i < columns; ++i)
-      p.add_disc(Vec2(i * d + (j % 2) * 0.5 * d, y0 + j * h), g.radius, g.density, lattice_id(i, j));
+      {
+        const double k = static_cast<double>(j) - static_cast<double>(extra_rows_below);
+        p.add_disc(Vec2(i * d + (j % 2) * 0.5 * d, bottom_row() + k * h), g.radius, g.density, lattice_id(i, j));
+      }
   return p;
 }
 

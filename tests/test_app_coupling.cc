@@ -1,8 +1,9 @@
 // `geohybrid coupling-test` end to end (issue 6): for each coupling method, the summary's figures
-// are those of the library's benchmarks (coupling/coupling_benchmarks.h) for the same input, and
-// within what coupling/README.md documents; the histories are written; bad input is refused
+// are those of the library's benchmarks (coupling/coupling_benchmarks.h, the method's own
+// scenarios) for the same input, and within what coupling/README.md documents; the histories are written; bad input is refused
 // naming the entry and the file, with no output directory left behind.
 #include "apps/coupling_test_command.h"
+#include "coupling/hexagonal_lattice.h"
 #include "temporary_directory.h"
 #include "text_file.h"
 
@@ -14,6 +15,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -70,10 +72,13 @@ std::vector<std::vector<double>> csv_rows(const fs::path &file)
   return rows;
 }
 
-/// The figures the library gives for the input `file` (read by the command's own parser).
+/// The figures the library gives for the input `file` (read by the command's own parser), from
+/// the method's own scenarios: the overlapping patch for methods 1 and 2, the lattice standing on
+/// the continuum for method 3 (its patch test without the shear, as the command states).
 struct LibraryFigures
 {
-  bench::PatchTestResult patch;
+  double ghost = 0.0;
+  std::size_t n_particles = 0, n_cells = 0;
   bench::WaveRecord wave;
   bench::EnergyRecord energy;
 };
@@ -83,14 +88,34 @@ LibraryFigures library_figures(const fs::path &file)
   geohybrid::apps::declare_coupling_test_parameters(prm);
   prm.parse_input(file.string());
   const geohybrid::apps::CouplingTestInput in = geohybrid::apps::parse_coupling_test(prm, file.string());
-  return {bench::patch_test(in.method, in.strain, in.patch), bench::strip_crossing(in.method, in.strip, in.patch),
-          bench::energy_record(in.method, in.n_energy_steps, 0.0, in.patch)};
+  LibraryFigures f;
+  if (const auto *interface = std::get_if<geohybrid::coupling::InterfaceCoupling>(&in.method))
+    {
+      const bench::PlaneStrain without_shear{in.strain.xx, in.strain.yy, 0.0};
+      const bench::InterfacePatchTestResult patch = bench::interface_patch_test(*interface, without_shear, in.patch);
+      f.ghost = patch.largest();
+      f.n_particles = patch.n_particles;
+      f.n_cells = patch.n_cells;
+      f.wave = bench::interface_strip_crossing(*interface, in.strip, in.patch);
+      f.energy = bench::interface_energy_record(*interface, in.strip, in.n_energy_steps, 0.0, in.patch);
+    }
+  else
+    {
+      const bench::PatchTestResult patch = bench::patch_test(in.method, in.strain, in.patch);
+      f.ghost = patch.ghost.largest();
+      f.n_particles = patch.n_particles;
+      f.n_cells = patch.n_cells;
+      f.wave = bench::strip_crossing(in.method, in.strip, in.patch);
+      f.energy = bench::energy_record(in.method, in.n_energy_steps, 0.0, in.patch);
+    }
+  return f;
 }
 
 /// Runs the command for `method` and checks its files against the library; returns the summary.
-fs::path run_and_compare(const fs::path &directory, const std::string &method)
+fs::path run_and_compare(const fs::path &directory, const std::string &method, const std::string &extra = "",
+                         unsigned int n_energy_steps = 10000)
 {
-  const fs::path input = write_input(directory, method);
+  const fs::path input = write_input(directory, method, extra);
   EXPECT_EQ(error_of(input), "");
   const fs::path out = directory / "out", summary = out / "summary.json";
   EXPECT_TRUE(fs::exists(summary));
@@ -102,18 +127,18 @@ fs::path run_and_compare(const fs::path &directory, const std::string &method)
   const auto same = [&](const std::string &key, double expected) {
     EXPECT_NEAR(summary_number(summary, key), expected, 1e-10 * std::abs(expected)) << key;
   };
-  same("max_ghost_force_relative", library.patch.ghost.largest());
+  same("max_ghost_force_relative", library.ghost);
   same("reflected_energy_fraction", library.wave.reflected);
   same("energy_drift_relative", library.energy.drift);
-  EXPECT_EQ(summary_number(summary, "n_particles"), static_cast<double>(library.patch.n_particles));
-  EXPECT_EQ(summary_number(summary, "n_cells"), 4.0 * 5.0); // 8 x 10.4 spacings in cells of ~2
+  EXPECT_EQ(summary_number(summary, "n_particles"), static_cast<double>(library.n_particles));
+  EXPECT_EQ(summary_number(summary, "n_cells"), static_cast<double>(library.n_cells));
   EXPECT_GT(summary_number(summary, "wall_time_s"), 0.0);
 
   // The histories: the energy every 10 steps from t = 0, the wave's ~200 samples ending at the figure.
   const auto energy = csv_rows(out / "energy_history.csv");
-  EXPECT_EQ(energy.size(), 10000u / 10u + 1u);
+  EXPECT_EQ(energy.size(), n_energy_steps / 10u + 1u);
   EXPECT_EQ(energy.front()[1], 0.0);
-  EXPECT_NEAR(energy.back()[0], 10000 * library.energy.time_step, 1e-9 * energy.back()[0]);
+  EXPECT_NEAR(energy.back()[0], n_energy_steps * library.energy.time_step, 1e-9 * energy.back()[0]);
   const auto wave = csv_rows(out / "wave_reflection.csv");
   EXPECT_GE(wave.size(), 100u);
   EXPECT_NEAR(wave.back()[1], library.wave.reflected, 1e-10 * library.wave.reflected);
@@ -130,6 +155,8 @@ TEST(CouplingTestCommand, LagrangeMultipliersFiguresAreTheLibrarys)
 {
   const geohybrid::testing::TemporaryDirectory d("coupling_test_lagrange");
   const fs::path summary = run_and_compare(d.path, "Lagrange multipliers");
+  EXPECT_EQ(summary_number(summary, "n_cells"), 4.0 * 5.0); // 8 x 10.4 spacings in cells of ~2
+  EXPECT_EQ(summary_number(summary, "patch_strain_xy"), 0.3e-7); // the input's, shear included
   EXPECT_NEAR(summary_number(summary, "max_ghost_force_relative"), 1.86e-2, 0.05 * 1.86e-2);
   EXPECT_LT(summary_number(summary, "ghost_force_untied_discs_relative"), 1e-6);
   EXPECT_LT(summary_number(summary, "reflected_energy_fraction"), 1e-3); // 1.5e-4
@@ -148,6 +175,57 @@ TEST(CouplingTestCommand, PenaltyFiguresAreTheLibrarys)
   EXPECT_LT(std::abs(summary_number(summary, "energy_drift_relative")), 1e-5);  // -4.4e-6
 }
 
+// Method 3 on the same input (its own layout: 14 x 9 discs standing on 14 x 6 cells for the patch
+// test, a strip of 6 columns and 47 rows on 40 cells for the wave and the energy run). Documented
+// (coupling/README.md, tests/test_coupling_interface*.cc): the patch test under the input's
+// (1e-7, -0.4e-7) without its shear, the closed form lambda eps_xx / |sigma| = 1.46e-1 (the
+// interface has no Poisson coupling) to 1e-4; the reflected energy 7.72e-3 and the drift -4.50e-6
+// (5 %, the stored measurements); the coupling's forces cancel to round-off.
+TEST(CouplingTestCommand, NonOverlappingInterfaceFiguresAreTheLibrarys)
+{
+  const geohybrid::testing::TemporaryDirectory d("coupling_test_interface");
+  const fs::path summary = run_and_compare(d.path, "non-overlapping interface");
+  EXPECT_EQ(summary_number(summary, "n_particles"), 14.0 * 9.0);
+  EXPECT_EQ(summary_number(summary, "n_cells"), 14.0 * 6.0);
+  EXPECT_EQ(summary_number(summary, "patch_strain_xx"), 1e-7);
+  EXPECT_EQ(summary_number(summary, "patch_strain_yy"), -0.4e-7);
+  EXPECT_EQ(summary_number(summary, "patch_strain_xy"), 0.0); // left out, and stated
+  EXPECT_NE(geohybrid::testing::read_text(summary).find("eps_xy left out"), std::string::npos);
+  const bench::PatchGeometry g;
+  const auto m = geohybrid::coupling::hexagonal_lattice_moduli(g.kn, g.ks);
+  const double closed_form = m.lame_lambda * 1e-7 / bench::stress_norm(g, {1e-7, -0.4e-7, 0.0});
+  EXPECT_NEAR(summary_number(summary, "max_ghost_force_relative"), closed_form, 1e-4 * closed_form);
+  EXPECT_NEAR(summary_number(summary, "ghost_force_untied_discs_relative"), closed_form, 1e-4 * closed_form);
+  EXPECT_NEAR(summary_number(summary, "ghost_force_continuum_nodes_relative"), closed_form, 1e-4 * closed_form);
+  EXPECT_NEAR(summary_number(summary, "reflected_energy_fraction"), 7.72e-3, 0.05 * 7.72e-3);
+  EXPECT_GT(summary_number(summary, "wave_energy_in_continuum_fraction"), 0.9);
+  EXPECT_NEAR(summary_number(summary, "energy_drift_relative"), -4.50e-6, 0.05 * 4.50e-6);
+  EXPECT_LT(summary_number(summary, "coupling_force_imbalance_max_N_per_m"),
+            1e-12 * summary_number(summary, "coupling_force_max_N_per_m"));
+  EXPECT_NEAR(summary_number(summary, "interface_normal_stiffness_N_per_m_per_m"),
+              bench::matched_interface(g).contact.normal_stiffness, 1e-10 * bench::matched_interface(g).contact.normal_stiffness);
+}
+
+// The input may ask for the strain that the interface carries exactly (uniaxial eps_yy) and for
+// softer springs: with half the matched kn the discs and nodes are left with
+// |sigma_yy - kn eps_yy r / d| / |sigma| in closed form (the spring carries kn eps_yy r of the
+// sigma_yy d the bottom row needs); 40 energy steps keep it short.
+TEST(CouplingTestCommand, NonOverlappingInterfaceUniaxialWithHalfTheSprings)
+{
+  const geohybrid::testing::TemporaryDirectory d("coupling_test_interface_uniaxial");
+  const std::string extra = "subsection Interface\n  set normal stiffness factor = 0.5\nend\n"
+                            "subsection Patch test\n  set strain xx = 0\n  set strain yy = -1e-7\n  set strain xy = 0\nend\n"
+                            "subsection Energy\n  set number of undamped steps = 40\nend\n";
+  const fs::path summary = run_and_compare(d.path, "non-overlapping interface", extra, 40);
+  const bench::PatchGeometry g;
+  const double kn = 0.5 * bench::matched_interface(g).contact.normal_stiffness;
+  EXPECT_NEAR(summary_number(summary, "interface_normal_stiffness_N_per_m_per_m"), kn, 1e-10 * kn);
+  const auto m = geohybrid::coupling::hexagonal_lattice_moduli(g.kn, g.ks);
+  const double eps_yy = -1e-7, syy = (m.lame_lambda + 2.0 * m.shear_modulus) * eps_yy;
+  const double closed_form = std::abs(syy - kn * eps_yy * g.radius / g.spacing()) / bench::stress_norm(g, {0.0, eps_yy, 0.0});
+  EXPECT_NEAR(summary_number(summary, "max_ghost_force_relative"), closed_form, 1e-4 * closed_form);
+}
+
 // The example is the defaults (what the tests above run), with its own output directory.
 TEST(CouplingTestCommand, ExampleIsTheDefaults)
 {
@@ -162,6 +240,7 @@ TEST(CouplingTestCommand, ExampleIsTheDefaults)
     {"Particles", {"normal stiffness", "shear stiffness", "disc radius", "density"}},
     {"Band", {"width", "cell size"}},
     {"Penalty", {"factor"}},
+    {"Interface", {"normal stiffness factor", "shear stiffness factor", "friction angle"}},
     {"Patch test", {"strain xx", "strain yy", "strain xy"}},
     {"Wave", {"pulse width", "strip length", "cell size"}},
     {"Energy", {"number of undamped steps"}}};
@@ -191,6 +270,12 @@ TEST(CouplingTestCommand, BadInputIsRefusedByNameWithNoOutput)
     {"penalty", "subsection Penalty\n  set factor = 0\nend\n", "factor"},
     {"penalty", "subsection Wave\n  set pulse width = 8\nend\n", "strip length"},        // the pulse does not fit
     {"penalty", "subsection Patch test\n  set strain xx = 0\n  set strain yy = 0\n  set strain xy = 0\nend\n", "strain"},
+    {"non-overlapping interface", "subsection Interface\n  set normal stiffness factor = 0\nend\n", "normal stiffness factor"},
+    {"non-overlapping interface", "subsection Interface\n  set shear stiffness factor = -1\nend\n", "shear stiffness factor"},
+    {"non-overlapping interface", "subsection Interface\n  set friction angle = 95\nend\n", "friction angle"},
+    {"non-overlapping interface", "subsection Interface\n  set stiffness = 2\nend\n", "stiffness"}, // unknown entry
+    // shear alone: method 3 leaves it out, which leaves no strain
+    {"non-overlapping interface", "subsection Patch test\n  set strain xx = 0\n  set strain yy = 0\nend\n", "strain yy"},
   };
   for (const Case &c : cases)
     {
