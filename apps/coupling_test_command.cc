@@ -148,7 +148,7 @@ void declare_coupling_test_parameters(ParameterHandler &prm)
                     "7.1e-2 at 2 spacings, coupling/README.md) [-]");
   prm.declare_entry("cell size", "2", Patterns::Double(0.5, 8.0),
                     "Width of the continuum's Q1 cells in the patch test and the energy run, in particle spacings "
-                    "(the wave has its own, subsection Wave) [-]");
+                    "(the wave has its own, subsection Wave; method 3 has no band, its cells are one spacing) [-]");
   prm.leave_subsection();
 
   prm.enter_subsection("Penalty");
@@ -186,10 +186,11 @@ void declare_coupling_test_parameters(ParameterHandler &prm)
                     "spectrum at wavelengths above about 12 spacings: long waves) [-]");
   prm.declare_entry("strip length", text(strip.length), Patterns::Double(8.0, 400.0),
                     "Length of the strip's particle-only region and of its continuum-only region, each, in particle "
-                    "spacings; the strip is 6 rows high; at least 8 pulse widths and 2 (band width + 2 pulse "
-                    "widths) [-]");
+                    "spacings; the strip is 6 rows high (method 3: 6 columns wide, the lattice standing on the "
+                    "continuum); at least 8 pulse widths and 2 (band width + 2 pulse widths) [-]");
   prm.declare_entry("cell size", text(strip.cell_size), Patterns::Double(0.5, 8.0),
-                    "Length of the strip's Q1 cells along it, in particle spacings (3 cells over its height) [-]");
+                    "Length of the strip's Q1 cells along it, in particle spacings (methods 1 and 2: 3 cells over its "
+                    "height; method 3: cells one spacing across, about this long down) [-]");
   prm.leave_subsection();
 
   prm.enter_subsection("Energy");
