@@ -80,7 +80,7 @@ WaveRecord interface_strip_crossing(const InterfaceCoupling &interface, const St
   launch_downward_pulse(coupled.particles(), spec, g, s.bottom_row());
 
   // The reference: the lattice continued below the interface in place of the continuum.
-  const unsigned int rows_below = standing_strip_rows_below(spec, g);
+  const unsigned int rows_below = standing_strip_rows_below(spec);
   dem::DemSystem reference(s.discs(rows_below), bonded_lattice_law(g.kn, g.ks), undamped_settings(s.stepper->time_step()));
   reference.initialise_forces();
   reference.bond_touching_contacts();

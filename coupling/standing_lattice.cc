@@ -66,12 +66,12 @@ InterfaceCoupling matched_interface(const PatchGeometry &g, double normal_factor
   return c;
 }
 
-unsigned int standing_strip_rows(const StripSpec &spec, const PatchGeometry &)
+unsigned int standing_strip_rows(const StripSpec &spec)
 {
   return static_cast<unsigned int>(std::ceil(spec.length * 2.0 / std::sqrt(3.0))); // rows h = sqrt(3) / 2 d apart
 }
 
-unsigned int standing_strip_rows_below(const StripSpec &spec, const PatchGeometry &)
+unsigned int standing_strip_rows_below(const StripSpec &spec)
 {
   return 2 * static_cast<unsigned int>(std::lround(spec.length / std::sqrt(3.0)));
 }
@@ -80,7 +80,7 @@ StandingLattice standing_strip(const StripSpec &spec, const InterfaceCoupling &i
                                double time_step)
 {
   const auto cells_down = static_cast<unsigned int>(std::max(1L, std::lround(spec.length / spec.cell_size)));
-  StandingLattice s = standing_lattice(g, 6, standing_strip_rows(spec, g), cells_down, interface,
+  StandingLattice s = standing_lattice(g, 6, standing_strip_rows(spec), cells_down, interface,
                                        spec.length / cells_down);
   s.particles = std::make_unique<dem::DemSystem>(s.discs(), bonded_lattice_law(g.kn, g.ks), undamped_settings(time_step));
   s.particles->initialise_forces();

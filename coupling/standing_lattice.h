@@ -60,6 +60,6 @@ StandingLattice standing_strip(const StripSpec &spec, const InterfaceCoupling &i
                                double time_step = 0.0);
 /// Rows of the strip's lattice, and the (even) number of rows the reference lattice adds below
 /// the interface in place of the continuum.
-unsigned int standing_strip_rows(const StripSpec &spec, const PatchGeometry &g);
-unsigned int standing_strip_rows_below(const StripSpec &spec, const PatchGeometry &g);
+unsigned int standing_strip_rows(const StripSpec &spec);
+unsigned int standing_strip_rows_below(const StripSpec &spec);
 } // namespace geohybrid::coupling::benchmarks
