@@ -132,6 +132,14 @@ struct WaveRecord
 double difference_energy(const dem::DemSystem &coupled, const dem::DemSystem &reference,
                          const std::vector<long> &coupled_of, const PatchGeometry &g);
 
+/// Steps the coupled run and the reference together for record.n_steps steps (both at the same
+/// step), sampling the difference energy and the continuum's share over `half_initial` [J/m]
+/// about 200 times (the samples only read), and sets record.reflected and record.transmitted
+/// from the last sample.
+void run_beside_reference(CoupledStepper &stepper, dem::DemSystem &reference, const dem::DemSystem &coupled,
+                          const std::vector<long> &coupled_of, const PatchGeometry &g, double half_initial,
+                          WaveRecord &record);
+
 /// The pulse launched on the free discs of the patch `g` at rest, run until the slowest wave of
 /// interest, at `speed` [m/s], has gone `travel` [m].
 WaveRecord crossing(const CouplingMethod &method, const PatchGeometry &g, const Pulse &pulse, double travel,

@@ -102,23 +102,7 @@ WaveRecord interface_strip_crossing(const InterfaceCoupling &interface, const St
   record.n_steps = static_cast<unsigned int>(spec.length * g.spacing() / strip_bar_speed(g) / record.time_step);
   record.n_particles = pc.n_bodies();
   record.n_cells = s.mesh->n_active_cells();
-  const auto sample = [&] {
-    const CouplingDiagnostics diagnostics = s.stepper->diagnostics();
-    record.history.push_back({s.stepper->time(), difference_energy(coupled, reference, coupled_of, g) / half_initial,
-                              (diagnostics.continuum_kinetic + diagnostics.continuum_elastic) / half_initial});
-  };
-  const unsigned int every = std::max(1u, record.n_steps / 200);
-  sample();
-  for (unsigned int n = 0; n < record.n_steps;)
-    {
-      const unsigned int chunk = std::min(every, record.n_steps - n);
-      s.stepper->run_steps(chunk);
-      reference.run_steps(chunk);
-      n += chunk;
-      sample();
-    }
-  record.reflected = record.history.back().reflected;
-  record.transmitted = record.history.back().in_continuum;
+  run_beside_reference(*s.stepper, reference, coupled, coupled_of, g, half_initial, record);
   return record;
 }
 

@@ -56,6 +56,29 @@ double difference_energy(const dem::DemSystem &coupled, const dem::DemSystem &re
   return difference;
 }
 
+void run_beside_reference(CoupledStepper &stepper, dem::DemSystem &reference, const dem::DemSystem &coupled,
+                          const std::vector<long> &coupled_of, const PatchGeometry &g, double half_initial,
+                          WaveRecord &record)
+{
+  const auto sample = [&] {
+    const CouplingDiagnostics diagnostics = stepper.diagnostics();
+    record.history.push_back({stepper.time(), difference_energy(coupled, reference, coupled_of, g) / half_initial,
+                              (diagnostics.continuum_kinetic + diagnostics.continuum_elastic) / half_initial});
+  };
+  const unsigned int every = std::max(1u, record.n_steps / 200);
+  sample();
+  for (unsigned int n = 0; n < record.n_steps;)
+    {
+      const unsigned int chunk = std::min(every, record.n_steps - n);
+      stepper.run_steps(chunk);
+      reference.run_steps(chunk);
+      n += chunk;
+      sample();
+    }
+  record.reflected = record.history.back().reflected;
+  record.transmitted = record.history.back().in_continuum;
+}
+
 WaveRecord crossing(const CouplingMethod &method, const PatchGeometry &g, const Pulse &pulse, double travel,
                     double speed)
 {
@@ -93,24 +116,7 @@ WaveRecord crossing(const CouplingMethod &method, const PatchGeometry &g, const 
   record.n_steps = static_cast<unsigned int>(travel / speed / record.time_step);
   record.n_particles = pc.n_bodies();
   record.n_cells = patch.mesh->n_active_cells();
-  const auto sample = [&] {
-    const CouplingDiagnostics diagnostics = patch.stepper->diagnostics();
-    record.history.push_back({patch.stepper->time(), difference_energy(coupled, reference, coupled_of, g) / half_initial,
-                              (diagnostics.continuum_kinetic + diagnostics.continuum_elastic) / half_initial});
-  };
-  // Both runs step together (the same step), sampled about 200 times: the samples only read.
-  const unsigned int every = std::max(1u, record.n_steps / 200);
-  sample();
-  for (unsigned int n = 0; n < record.n_steps;)
-    {
-      const unsigned int chunk = std::min(every, record.n_steps - n);
-      patch.stepper->run_steps(chunk);
-      reference.run_steps(chunk);
-      n += chunk;
-      sample();
-    }
-  record.reflected = record.history.back().reflected;
-  record.transmitted = record.history.back().in_continuum;
+  run_beside_reference(*patch.stepper, reference, coupled, coupled_of, g, half_initial, record);
   return record;
 }
 
