@@ -145,30 +145,19 @@ TEST(InterfaceWall, StableStepIncludesTheInterfaceSprings)
 
 TEST(InterfaceWall, BadInputNamesTheProblem)
 {
-  const auto message_of = [](auto make) {
-    try
-      {
-        make();
-      }
-    catch (const std::invalid_argument &e)
-      {
-        return std::string(e.what());
-      }
-    return std::string("no exception");
-  };
   const PatchGeometry g;
   StandingLattice s = standing_lattice(g, 6, 5, 4, matched_interface(g));
   s.particles = std::make_unique<dem::DemSystem>(s.discs(), bonded_lattice_law(g.kn, g.ks), undamped_settings());
   InterfaceCoupling bonded = s.interface;
   bonded.contact.tensile_strength = 1.0;
-  EXPECT_NE(message_of([&] { CoupledStepper(*s.particles, *s.continuum, bonded); }).find("tensile strength"),
+  EXPECT_NE(invalid_argument_message([&] { CoupledStepper(*s.particles, *s.continuum, bonded); }).find("tensile strength"),
             std::string::npos);
   InterfaceCoupling nowhere = s.interface;
   nowhere.boundary_id = 7;
-  EXPECT_NE(message_of([&] { CoupledStepper(*s.particles, *s.continuum, nowhere); }).find("boundary id"),
+  EXPECT_NE(invalid_argument_message([&] { CoupledStepper(*s.particles, *s.continuum, nowhere); }).find("boundary id"),
             std::string::npos);
   const OverlapBand band(Vec2(0.0, 0.0), Vec2(0.0, -1.0), g.spacing());
-  EXPECT_NE(message_of([&] { CoupledStepper(*s.particles, *s.continuum, band, CouplingMethod(s.interface)); })
+  EXPECT_NE(invalid_argument_message([&] { CoupledStepper(*s.particles, *s.continuum, band, CouplingMethod(s.interface)); })
               .find("no overlap band"),
             std::string::npos);
 }

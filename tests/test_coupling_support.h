@@ -4,6 +4,8 @@
 #include "dem/dem_system.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace geohybrid::coupling::testing
 {
@@ -35,6 +37,21 @@ inline dem::LinearContactLaw lattice_law(double kn, double ks)
   c.friction_angle_deg = 60.0;
   c.restitution = 1.0;
   return dem::LinearContactLaw(c);
+}
+
+/// The message of the std::invalid_argument that `make()` throws, or "no exception".
+template <typename Make>
+std::string invalid_argument_message(Make make)
+{
+  try
+    {
+      make();
+    }
+  catch (const std::invalid_argument &e)
+    {
+      return std::string(e.what());
+    }
+  return std::string("no exception");
 }
 
 } // namespace geohybrid::coupling::testing
