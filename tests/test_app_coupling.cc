@@ -57,21 +57,6 @@ double summary_number(const fs::path &file, const std::string &key)
   return std::stod(s.substr(at + key.size() + 4));
 }
 
-std::vector<std::vector<double>> csv_rows(const fs::path &file)
-{
-  std::vector<std::vector<double>> rows;
-  const std::vector<std::string> lines = geohybrid::testing::lines_of(file);
-  for (std::size_t k = 1; k < lines.size(); ++k)
-    {
-      std::vector<double> row;
-      std::istringstream in(lines[k]);
-      for (std::string field; std::getline(in, field, ',');)
-        row.push_back(std::stod(field));
-      rows.push_back(row);
-    }
-  return rows;
-}
-
 /// The figures the library gives for the input `file` (read by the command's own parser), from
 /// the method's own scenarios: the overlapping patch for methods 1 and 2, the lattice standing on
 /// the continuum for method 3 (its patch test without the shear, as the command states).
@@ -135,11 +120,11 @@ fs::path run_and_compare(const fs::path &directory, const std::string &method, c
   EXPECT_GT(summary_number(summary, "wall_time_s"), 0.0);
 
   // The histories: the energy every 10 steps from t = 0, the wave's ~200 samples ending at the figure.
-  const auto energy = csv_rows(out / "energy_history.csv");
+  const auto energy = geohybrid::testing::numbers_of(out / "energy_history.csv");
   EXPECT_EQ(energy.size(), n_energy_steps / 10u + 1u);
   EXPECT_EQ(energy.front()[1], 0.0);
   EXPECT_NEAR(energy.back()[0], n_energy_steps * library.energy.time_step, 1e-9 * energy.back()[0]);
-  const auto wave = csv_rows(out / "wave_reflection.csv");
+  const auto wave = geohybrid::testing::numbers_of(out / "wave_reflection.csv");
   EXPECT_GE(wave.size(), 100u);
   EXPECT_NEAR(wave.back()[1], library.wave.reflected, 1e-10 * library.wave.reflected);
   EXPECT_LT(wave.front()[1], 1e-20); // nothing reflected before the pulse moves

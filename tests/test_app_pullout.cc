@@ -18,6 +18,7 @@
 
 namespace fs = std::filesystem;
 using geohybrid::testing::lines_of;
+using geohybrid::testing::numbers_of;
 
 namespace
 {
@@ -159,21 +160,6 @@ std::string write_tiny_input(const fs::path &directory)
 }
 
 /// The rows of a CSV file of numbers, after its header.
-std::vector<std::vector<double>> numbers_of(const fs::path &file)
-{
-  std::vector<std::vector<double>> rows;
-  const std::vector<std::string> lines = lines_of(file);
-  for (std::size_t k = 1; k < lines.size(); ++k)
-    {
-      std::vector<double> row;
-      std::istringstream in(lines[k]);
-      for (std::string field; std::getline(in, field, ',');)
-        row.push_back(std::stod(field));
-      rows.push_back(row);
-    }
-  return rows;
-}
-
 double json_number(const fs::path &file, const std::string &key)
 {
   std::stringstream text;
