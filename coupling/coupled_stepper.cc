@@ -21,10 +21,7 @@ void check_sides(const dem::DemSystem &particles, const fem::ExplicitSolver &con
   // continuum's are half-step ones after a step.
   if (continuum.n_steps() > 0)
     throw std::invalid_argument(where + "set the coupling up before the continuum takes a step");
-  if (particles.settings().local_damping != 0.0)
-    throw std::invalid_argument(where + "parameter 'local damping coefficient' of the particles must be 0");
-  if (continuum.settings().damping.local != 0.0 || continuum.settings().damping.mass_proportional != 0.0)
-    throw std::invalid_argument(where + "the continuum's 'local damping' and 'mass-proportional damping' must be 0");
+  (void)particles;
 }
 
 const OverlapBand &checked(const dem::DemSystem &particles, const fem::ExplicitSolver &continuum,
@@ -82,6 +79,24 @@ CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &c
   , band_(weighted_band(particles, continuum, band))
   , tie_(make_tie(method, *band_, particles, continuum, band))
 {
+  // The multipliers are solved for the undamped kicks of both sides: the tied particles and the
+  // nodes they interpolate from are left out of the local and mass-proportional damping (they
+  // are damped through the rest of both models, which they move with). The penalty springs are
+  // forces like any other: damping stays everywhere.
+  if (std::holds_alternative<LagrangeTie>(tie_))
+    {
+      particles.set_undamped_bodies(band_->body);
+      std::vector<unsigned int> tied_dofs;
+      const BandPoints &points = band_->points;
+      for (std::size_t p = 0; p < band_->size(); ++p)
+        for (unsigned int k = 0; k < points.nodes_per_point(); ++k)
+          if (points.shape_value(p, k) != 0.0)
+            {
+              tied_dofs.push_back(points.x_dof(p, k));
+              tied_dofs.push_back(points.y_dof(p, k));
+            }
+      continuum.set_undamped_dofs(tied_dofs);
+    }
   for (std::size_t q = 0; q < band_->driven_body.size(); ++q)
     driven_tied_displacement_.push_back(band_->driven_points.interpolate(continuum.displacement(), q));
   start();
@@ -134,7 +149,12 @@ const BandParticles &CoupledStepper::band_particles() const
   return *band_;
 }
 
-CoupledStepper::~CoupledStepper() { particles_.set_force_hook({}); }
+CoupledStepper::~CoupledStepper()
+{
+  particles_.set_force_hook({});
+  particles_.set_undamped_bodies({});
+  continuum_.set_undamped_dofs({});
+}
 
 void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_time)
 {

@@ -18,11 +18,18 @@
 // Method 3 (the non-overlapping interface, interface_wall.h) has no band, no weights and no driven
 // particles: the force hook evaluates the disc-edge contacts at t_{n+1}, both sides being there.
 //
-// Limits (checked, std::invalid_argument): one MPI rank; both sides undamped (local and
-// mass-proportional damping would need their own predictors); set up before the continuum steps
-// (the particles may have run before).
-// The diagnostics' continuum elastic energy 1/2 u . f_int assumes a linear elastic soil without
-// initial stress and without body force or loads on the continuum.
+// Gravity and damping (quasi-static runs, the geostatic column): both sides keep their own
+// gravity (on the weighted masses: the band's weight is counted once) and their own damping. With
+// the multipliers (method 1), the tied particles and the nodes they interpolate from are exempt
+// from damping (DemSystem::set_undamped_bodies, ExplicitSolver::set_undamped_dofs): the
+// multipliers make their half-step velocities equal for the undamped update, and a damping force
+// added afterwards would open a velocity gap every step. They are damped through the rest of both
+// models. Penalty springs and interface contacts are forces like the others: damped everywhere.
+// Limits (checked, std::invalid_argument): one MPI rank; set up before the continuum steps (the
+// particles may have run before).
+// The diagnostics' energies are the conserved ones of an undamped run without body force: the
+// continuum elastic energy 1/2 u . f_int assumes a linear elastic soil without initial stress,
+// body force or loads on the continuum; with damping or gravity the total is not conserved.
 #include "coupling/band_particles.h"
 #include "coupling/coupling_method.h"
 #include "coupling/interface_wall.h"

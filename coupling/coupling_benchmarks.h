@@ -157,6 +157,53 @@ struct StripSpec
 PatchGeometry strip_geometry(const StripSpec &spec, const PatchGeometry &lattice = {});
 WaveRecord strip_crossing(const CouplingMethod &method, const StripSpec &spec, const PatchGeometry &lattice = {});
 
+// ---- The geostatic column (methods 1 and 2): gravity and damping across the band ----
+
+/// A column under its own weight across the band, damped to rest. The patch's layout turned on
+/// its side: gravity points along -x, so x is the height; the lattice (particles below the band,
+/// `rows` rows wide, its first disc of each row fixed: the rigid base) carries the band and the
+/// continuum above it, whose far edge x_top = continuum_end spacings is the free surface. Sides
+/// free on both models (a uniaxial column), the continuum's density the lattice's mass per area,
+/// local damping on both sides (the multipliers' tied discs and nodes exempt: coupled_stepper.h).
+/// At rest the vertical stress is the weight above, sigma_xx(x) = -rho g (x_top - x), in both
+/// models whatever the lateral stress, since the sides carry no shear.
+struct ColumnSpec
+{
+  double gravity = 9.81;              ///< [m/s^2]
+  double local_damping = 0.7;         ///< both sides [-]
+  unsigned int rows = 8;
+  double band_start = 16.3, band_width = 4.0, continuum_end = 36.3; ///< in spacings
+  double window = 4.0;                ///< length of each stress window along the column, in spacings
+  double tolerance = 1e-6;            ///< rest: the windows' stresses change by less than this, relative, over 500 steps
+  unsigned int max_steps = 60000;
+};
+/// One stress window: its centre's height [m], the measured vertical stress and the weight above
+/// it (both as compressions, positive) [Pa], the model that measured it.
+struct ColumnSample
+{
+  double height = 0.0, measured = 0.0, closed_form = 0.0;
+  bool particles = true; ///< Love-Weber stress of the lattice; false: the continuum's mean stress
+  double relative_error() const { return (measured - closed_form) / closed_form; }
+};
+struct ColumnRecord
+{
+  std::vector<ColumnSample> samples;   ///< from the base up: the lattice's windows below the band, the continuum's above
+  unsigned int n_steps = 0;            ///< to rest
+  double time_step = 0.0;              ///< [s]
+  double base_stress = 0.0;            ///< rho g x_top, the closed-form stress at x = 0 [Pa]
+  /// At rest: the largest |(x_p - X_p) - u(X_p)| of the tied discs (the ties hold them on the
+  /// continuum: round-off with the multipliers, the springs' stretch with the penalty), and the
+  /// largest tied displacement |x_p - X_p| it compares with [m].
+  double tied_mismatch = 0.0, tied_displacement = 0.0;
+  double largest_relative_error() const;
+  /// The step in vertical stress across the band: the continuum's first window above it against
+  /// the lattice's last below it, each relative to its closed form: (s_c / s_c,0) - (s_p / s_p,0) [-].
+  double jump_across_band() const;
+};
+/// Throws std::invalid_argument for the interface coupling (method 3 has no band: its column is
+/// interface_geostatic_column) or if rest is not reached within max_steps.
+ColumnRecord geostatic_column(const CouplingMethod &method, const ColumnSpec &spec = {});
+
 // ---- Method 3, the non-overlapping interface: a lattice standing on the continuum ----
 // (standing_lattice.h; the same measures as above, across the interface y = 0 instead of a band.)
 

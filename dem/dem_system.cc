@@ -279,6 +279,26 @@ void DemSystem::set_energy_weights(EnergyWeights weights)
   set_time_step(time_step_);
 }
 
+void DemSystem::set_undamped_bodies(const std::vector<std::uint32_t> &bodies)
+{
+  const std::size_t nb = particles_.n_bodies();
+  if (bodies.empty())
+    {
+      damping_scale_ = SoaVector<double>();
+      return;
+    }
+  SoaVector<double> scale;
+  scale.assign(nb, 1.0);
+  for (const std::uint32_t b : bodies)
+    {
+      if (b >= nb)
+        throw std::invalid_argument("DEM: undamped body index " + std::to_string(b) + " is out of range (" +
+                                    std::to_string(nb) + " bodies)");
+      scale[b] = 0.0;
+    }
+  damping_scale_ = std::move(scale);
+}
+
 void DemSystem::bond_touching_contacts()
 {
   initialise_forces(); // the contacts touching now are known only after a force evaluation
@@ -354,6 +374,7 @@ struct BodyLoopInput
 {
   double dt = 0.0, alpha = 0.0, gx = 0.0, gy = 0.0;
   double *damping_fx = nullptr, *damping_fy = nullptr, *damping_torque = nullptr, *scratch = nullptr;
+  const double *damping_scale = nullptr; ///< per body 1 or 0 (set_undamped_bodies), or none
   const double *reference_x = nullptr, *reference_y = nullptr; ///< disc positions at the last rebuild
 };
 
@@ -427,9 +448,10 @@ double kick_and_drift_range(ParticleSet &p, const BodyLoopInput &in, std::size_t
 
 /// Bodies [begin, end) of the second half kick, with the forces of the new positions, and the
 /// local damping force of this evaluation (`damped`; its work to the scratch array with `book`).
-template <bool damped, bool book>
+template <bool damped, bool book, bool exempt = false>
 void final_kick_range(ParticleSet &p, const BodyLoopInput &in, std::size_t begin, std::size_t end)
 {
+  const double *const damping_scale = in.damping_scale;
   double *const vx = p.vx.data(), *const vy = p.vy.data(), *const omega = p.omega.data();
   const double *const fx = p.fx.data(), *const fy = p.fy.data(), *const torque = p.torque.data();
   const double *const inverse_mass = p.inverse_mass.data(), *const inverse_inertia = p.inverse_inertia.data();
@@ -456,11 +478,17 @@ void final_kick_range(ParticleSet &p, const BodyLoopInput &in, std::size_t begin
 #pragma omp simd
       for (std::size_t b = begin; b < end; ++b)
         {
-          // A fixed body keeps its velocity and has no damping force.
+          // A fixed body keeps its velocity and has no damping force; nor has an exempt one.
           const bool fixed = inverse_mass[b] == 0.0;
-          const double dfx = fixed ? 0.0 : damping(fx[b], vx[b]);
-          const double dfy = fixed ? 0.0 : damping(fy[b], vy[b]);
-          const double dt = fixed ? 0.0 : damping(torque[b], omega[b]);
+          double dfx = fixed ? 0.0 : damping(fx[b], vx[b]);
+          double dfy = fixed ? 0.0 : damping(fy[b], vy[b]);
+          double dt = fixed ? 0.0 : damping(torque[b], omega[b]);
+          if constexpr (exempt)
+            {
+              dfx *= damping_scale[b];
+              dfy *= damping_scale[b];
+              dt *= damping_scale[b];
+            }
           damping_fx[b] = dfx;
           damping_fy[b] = dfy;
           damping_torque[b] = dt;
@@ -543,8 +571,16 @@ void DemSystem::final_kick(std::size_t begin, std::size_t end)
   in.damping_fy = damping_fy_.data();
   in.damping_torque = damping_torque_.data();
   in.scratch = body_scratch_.data();
+  in.damping_scale = damping_scale_.data();
   if (in.alpha == 0.0)
     final_kick_range<false, false>(particles_, in, begin, end);
+  else if (!damping_scale_.empty())
+    {
+      if (settings_.track_energy)
+        final_kick_range<true, true, true>(particles_, in, begin, end);
+      else
+        final_kick_range<true, false, true>(particles_, in, begin, end);
+    }
   else if (settings_.track_energy)
     final_kick_range<true, true>(particles_, in, begin, end);
   else

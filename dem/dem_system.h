@@ -206,6 +206,14 @@ public:
   using ForceHook = std::function<void(ParticleSet &particles, double impulse_time)>;
   void set_force_hook(ForceHook hook) { force_hook_ = std::move(hook); }
 
+  /// Bodies that local damping leaves alone: those whose velocity a coupling's constraint sets
+  /// (the bridging domain's tied particles: the multipliers are solved for the undamped kick, so a
+  /// damping force added after them would break the constraint; their motion is damped through
+  /// the continuum they follow). Indices of bodies; an empty list damps every body again. A
+  /// system with exempt bodies runs a separate compiled variant of the damped kick; the others
+  /// run the same code as before. Throws std::invalid_argument for an index out of range.
+  void set_undamped_bodies(const std::vector<std::uint32_t> &bodies);
+
   /// Forces the next step to rebuild the neighbour lists (after moving particles or walls by hand).
   void request_neighbour_rebuild() { rebuild_needed_ = true; }
   std::uint64_t n_neighbour_rebuilds() const { return n_rebuilds_; }
@@ -285,6 +293,7 @@ private:
   // Coupling (set_energy_weights, set_force_hook): unused by an uncoupled system.
   EnergyWeights energy_weights_;
   bool weighted_ = false;
+  SoaVector<double> damping_scale_; ///< per body 1 (damped) or 0 (exempt); empty: all damped
   ForceHook force_hook_;
   double first_step_ = 0.0; ///< the step initialise_forces() prepares (its own step length is 0)
 };

@@ -424,12 +424,14 @@ void ExplicitSolver::take_step(double dt)
       // v_{n-1/2} alone would be that of round-off at a node that a wave is about to reach, and
       // the run would depend on the number of ranks.
       const double v_now = v + 0.5 * previous_step_ * force / mass_.local_element(i);
-      if (alpha_local > 0.0 && v_now != 0.0)
+      const bool damped = undamped_.empty() || !undamped_[i];
+      const double alpha_i = damped ? alpha : 0.0;
+      if (damped && alpha_local > 0.0 && v_now != 0.0)
         force -= alpha_local * std::abs(force) * (v_now > 0.0 ? 1.0 : -1.0);
       // (v+ - v-)/dt = f/m - alpha (v+ + v-)/2
       velocity_.local_element(i) =
-        ((1.0 - 0.5 * alpha * dt_velocity) * v + dt_velocity * force / mass_.local_element(i)) /
-        (1.0 + 0.5 * alpha * dt_velocity);
+        ((1.0 - 0.5 * alpha_i * dt_velocity) * v + dt_velocity * force / mass_.local_element(i)) /
+        (1.0 + 0.5 * alpha_i * dt_velocity);
     }
   for (const auto &entry : prescribed)
     {
@@ -454,6 +456,25 @@ void ExplicitSolver::take_step(double dt)
   time_ = new_time;
   previous_step_ = dt;
   ++n_steps_;
+}
+
+void ExplicitSolver::set_undamped_dofs(const std::vector<unsigned int> &local_dofs)
+{
+  const unsigned int n = velocity_.locally_owned_size();
+  if (local_dofs.empty())
+    {
+      undamped_.clear();
+      return;
+    }
+  std::vector<bool> undamped(n, false);
+  for (const unsigned int i : local_dofs)
+    {
+      if (i >= n)
+        throw std::invalid_argument("explicit solver: undamped DoF " + std::to_string(i) +
+                                    " is not a locally owned DoF (" + std::to_string(n) + " owned)");
+      undamped[i] = true;
+    }
+  undamped_ = std::move(undamped);
 }
 
 void ExplicitSolver::set_time_step(double dt)

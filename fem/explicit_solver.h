@@ -96,6 +96,13 @@ public:
   /// Collective; call before the first step, once.
   void set_energy_weight(const std::function<double(const dealii::Point<dim> &)> &weight);
 
+  /// Degrees of freedom (local indices of owned DoFs) that the damping leaves alone: those whose
+  /// velocity a coupling's constraint ties to particles (the bridging domain's multipliers are
+  /// solved for the undamped update; the nodes are damped through the particles and the rest of
+  /// the mesh). An empty list damps every DoF again. Throws std::invalid_argument for an index
+  /// that is not a locally owned DoF.
+  void set_undamped_dofs(const std::vector<unsigned int> &local_dofs);
+
   /// One step of time_step(). Collective.
   void step();
   /// Steps of at most time_step() until time() == end_time (the last ones evenly shortened).
@@ -169,6 +176,7 @@ private:
   MaterialPointHistory material_points_;
   std::vector<bool> constrained_;      ///< per locally owned DoF (local index): displacement prescribed
   std::vector<unsigned int> x_component_; ///< per locally owned DoF: 1 for x, 0 for y
+  std::vector<bool> undamped_;         ///< per locally owned DoF (set_undamped_dofs); empty: all damped
   double critical_time_step_ = 0.0;
   double time_step_ = 0.0;
 

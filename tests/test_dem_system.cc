@@ -803,3 +803,31 @@ TEST(EnergyWeights, ForceHookActsBeforeTheSecondHalfKick)
   EXPECT_DOUBLE_EQ(impulse_times[0], 0.5 * dt);
   EXPECT_DOUBLE_EQ(impulse_times[1], dt);
 }
+
+// Local damping leaves exempt bodies alone (a coupling's tied particles): two equal discs fall
+// from rest under gravity with alpha = 0.7; the exempt one falls freely (velocity Verlet is exact
+// for a constant force: v = g t), the other at (1 - alpha) g once it moves.
+TEST(LocalDamping, ExemptBodiesFallFreely)
+{
+  ParticleSet p;
+  p.add_disc(Vec2(0.0, 0.0), 0.01, 1000.0);
+  p.add_disc(Vec2(1.0, 0.0), 0.01, 1000.0);
+  DemSettings s;
+  s.gravity = Vec2(0.0, -9.81);
+  s.local_damping = 0.7;
+  s.time_step = 1e-5;
+  DemSystem system(p, LinearContactLaw(), s);
+  system.set_undamped_bodies({0});
+  system.initialise_forces();
+  for (int n = 0; n < 100; ++n)
+    system.step();
+  const double t = 100 * 1e-5;
+  EXPECT_NEAR(system.particles().vy[0], -9.81 * t, 1e-12);
+  EXPECT_NEAR(system.particles().vy[1], -(1.0 - 0.7) * 9.81 * t, 0.02 * 9.81 * t);
+  system.set_undamped_bodies({}); // damped again (from the second half kick on: the first step's
+  system.step();                   // first half kick still has no damping force)
+  const double v0 = system.particles().vy[0];
+  system.step();
+  EXPECT_NEAR(system.particles().vy[0] - v0, -(1.0 - 0.7) * 9.81 * 1e-5, 1e-12);
+  EXPECT_THROW(system.set_undamped_bodies({2}), std::invalid_argument);
+}
