@@ -37,6 +37,8 @@ continuum_region_mesh(const Tank &tank, const OverlapBand &band)
       if (inside)
         in_core.insert(cell);
     }
+  // Every kept cell has a vertex with s > 0, where w > 0: none is left without the continuum's
+  // energy (whether its quadrature points see it is the solver's check, see the header).
   if (in_core.size() == tank.n_active_cells())
     throw std::invalid_argument("continuum region: parameter 'DEM region' covers the whole tank: no continuum is left");
 
