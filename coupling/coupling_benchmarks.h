@@ -34,6 +34,11 @@ double stress_norm(const PatchGeometry &g, const PlaneStrain &strain);
 /// springs load), then released at rest; the continuum given u = eps x and the lattice's prestress
 /// -sqrt(3) kn delta0 / d (isotropic), then the coupled forces at t = 0 evaluated.
 CoupledPatch strained_patch(const CouplingMethod &method, const PlaneStrain &strain, const PatchGeometry &geometry = {});
+/// The same with the band given instead of patch_band(geometry): the same lattice and mesh, so the
+/// band must have the patch's band as its active side (a polygon whose other sides lie far outside
+/// the patch tests the polygon's code path on the same physics).
+CoupledPatch strained_patch(const CouplingMethod &method, const PlaneStrain &strain, const PatchGeometry &geometry,
+                            const OverlapBand &band);
 
 /// The largest residual forces of a strained patch, relative to |sigma| times the length each
 /// carries (the spacing d for a disc, the cell width for a node) [-].
@@ -59,6 +64,9 @@ struct PatchTestResult
   std::size_t n_particles = 0, n_cells = 0;
 };
 PatchTestResult patch_test(const CouplingMethod &method, const PlaneStrain &strain, const PatchGeometry &geometry = {});
+/// Through a given band (see strained_patch).
+PatchTestResult patch_test(const CouplingMethod &method, const PlaneStrain &strain, const PatchGeometry &geometry,
+                           const OverlapBand &band);
 
 /// One sample of an undamped coupled run's energies [J/m], at `time` [s].
 struct EnergySample

@@ -80,6 +80,12 @@ double stress_norm(const PatchGeometry &g, const PlaneStrain &eps)
 
 CoupledPatch strained_patch(const CouplingMethod &method, const PlaneStrain &eps, const PatchGeometry &geometry)
 {
+  return strained_patch(method, eps, geometry, patch_band(geometry));
+}
+
+CoupledPatch strained_patch(const CouplingMethod &method, const PlaneStrain &eps, const PatchGeometry &geometry,
+                            const OverlapBand &band)
+{
   CoupledPatch patch;
   patch.geometry = geometry;
   const PatchGeometry &g = patch.geometry;
@@ -88,7 +94,7 @@ CoupledPatch strained_patch(const CouplingMethod &method, const PlaneStrain &eps
   patch.continuum = std::make_unique<fem::ExplicitSolver>(*patch.mesh, matching_soil(g), fem::BoundaryConditions{},
                                                           patch_continuum_settings(g));
   strain_continuum(*patch.continuum, g, eps);
-  patch.stepper = std::make_unique<CoupledStepper>(*patch.particles, *patch.continuum, patch_band(g), method);
+  patch.stepper = std::make_unique<CoupledStepper>(*patch.particles, *patch.continuum, band, method);
   return patch;
 }
 
@@ -142,7 +148,13 @@ GhostForces ghost_forces(const CoupledPatch &patch, const PlaneStrain &eps)
 
 PatchTestResult patch_test(const CouplingMethod &method, const PlaneStrain &strain, const PatchGeometry &geometry)
 {
-  const CoupledPatch patch = strained_patch(method, strain, geometry);
+  return patch_test(method, strain, geometry, patch_band(geometry));
+}
+
+PatchTestResult patch_test(const CouplingMethod &method, const PlaneStrain &strain, const PatchGeometry &geometry,
+                           const OverlapBand &band)
+{
+  const CoupledPatch patch = strained_patch(method, strain, geometry, band);
   PatchTestResult result;
   result.ghost = ghost_forces(patch, strain);
   result.n_particles = patch.particles->particles().n_bodies();
