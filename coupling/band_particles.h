@@ -10,7 +10,7 @@
 //   force) unless it too is tied. Those lie just outside the mesh and are tied to the extrapolated
 //   shape functions of the nearest cell.
 // - Driven particles: those in the continuum-only region (w = 1) past the band's continuum-side
-//   edge. They have no mass left, but a contact between one of them and a band particle still
+//   edge (and, on request, the band's lightest particles: see OverlapBand::driven_from). They have no mass left, but a contact between one of them and a band particle still
 //   carries the weight of the part of its branch inside the band; without them the band's last
 //   particles would miss those contacts (a ghost force at that edge). They are fixed bodies moved
 //   with the continuum's displacement (x = X + u(X) - u_0(X)), and their contact forces are passed
@@ -25,6 +25,7 @@ namespace geohybrid::coupling
 {
 struct BandParticles
 {
+  double driven_from = 0.0;                ///< band coordinate from which particles are driven [m]
   std::vector<std::uint32_t> body;         ///< DEM body index of each tied particle
   std::vector<Vec2> reference_position;    ///< its centre of mass when tied [m]
   BandPoints points;                       ///< where the reference positions sit in the mesh
@@ -33,11 +34,12 @@ struct BandParticles
   std::vector<Vec2> driven_reference_position;  ///< [m]
   BandPoints driven_points;
 
-  /// Tied: the bodies of `particles` with -tie_margin < s < w, located in `space`'s mesh
-  /// (extrapolated up to tie_margin outside it); driven: those with s >= w. Throws
+  /// Tied: the bodies of `particles` with -tie_margin < s < s_d, located in `space`'s mesh
+  /// (extrapolated up to tie_margin outside it); driven: those with s >= s_d, where s_d =
+  /// band.driven_from(driven_below_weight) (w for 0: only those past the band). Throws
   /// std::invalid_argument if no particle is tied or one lies farther outside the mesh.
   BandParticles(const OverlapBand &band, const dem::ParticleSet &particles, const fem::DisplacementSpace &space,
-                const BandPoints::Vector &layout, double tie_margin);
+                const BandPoints::Vector &layout, double tie_margin, double driven_below_weight = 0.0);
   std::size_t size() const { return body.size(); }
 };
 } // namespace geohybrid::coupling

@@ -43,12 +43,15 @@ const InterfaceCoupling &checked(const dem::DemSystem &particles, const fem::Exp
 
 /// The weights go on before the band's particles are gathered: the multipliers' matrix needs the
 /// weighted masses.
-BandParticles weighted_band(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band)
+BandParticles weighted_band(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
+                            double driven_below_weight)
 {
-  // The particles past the band are moved by the continuum: fixed bodies (no mass, no weight).
+  // The particles past the band (and the band's lightest, on request) are moved by the
+  // continuum: fixed bodies (no mass, no weight).
+  const double driven_from = band.driven_from(driven_below_weight);
   dem::ParticleSet &movable = particles.particles();
   for (std::size_t b = 0; b < movable.n_bodies(); ++b)
-    if (band.coordinate(Vec2(movable.x[b], movable.y[b])) >= band.width())
+    if (band.coordinate(Vec2(movable.x[b], movable.y[b])) >= driven_from)
       movable.fix_body(b);
   particles.set_energy_weights(band.energy_weights(particles.particles()));
   continuum.set_energy_weight(
@@ -58,7 +61,7 @@ BandParticles weighted_band(dem::DemSystem &particles, fem::ExplicitSolver &cont
   double extent = 0.0;
   for (std::size_t d = 0; d < p.n_discs_total(); ++d)
     extent = std::max(extent, std::hypot(p.disc_offset_x[d], p.disc_offset_y[d]) + p.disc_radius[d]);
-  return BandParticles(band, p, continuum.space(), continuum.displacement(), 2.0 * extent);
+  return BandParticles(band, p, continuum.space(), continuum.displacement(), 2.0 * extent, driven_below_weight);
 }
 
 std::variant<LagrangeTie, PenaltyTie, InterfaceWall> make_tie(const CouplingMethod &method, const BandParticles &band,
@@ -72,20 +75,21 @@ std::variant<LagrangeTie, PenaltyTie, InterfaceWall> make_tie(const CouplingMeth
 } // namespace
 
 CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
-                               const CouplingMethod &method)
+                               const CouplingMethod &method, double driven_below_weight)
   : particles_(particles)
   , continuum_(continuum)
   , band_geometry_(checked(particles, continuum, band, method))
-  , band_(weighted_band(particles, continuum, band))
+  , band_(weighted_band(particles, continuum, band, driven_below_weight))
   , tie_(make_tie(method, *band_, particles, continuum, band))
 {
-  // The multipliers are solved for the undamped kicks of both sides: the tied particles and the
-  // nodes they interpolate from are left out of the local and mass-proportional damping (they
-  // are damped through the rest of both models, which they move with). The penalty springs are
-  // forces like any other: damping stays everywhere.
+  // The multipliers set the tied particles' translation (DemSystem::set_constrained_bodies):
+  // it and the nodes they interpolate from are left out of the local and mass-proportional
+  // damping (the multipliers are solved for the undamped kicks; both are damped through the rest
+  // of the models, which they move with). The penalty springs are forces like any other:
+  // damping stays everywhere.
   if (std::holds_alternative<LagrangeTie>(tie_))
     {
-      particles.set_undamped_bodies(band_->body);
+      particles.set_constrained_bodies(band_->body);
       std::vector<unsigned int> tied_dofs;
       const BandPoints &points = band_->points;
       for (std::size_t p = 0; p < band_->size(); ++p)
@@ -152,8 +156,8 @@ const BandParticles &CoupledStepper::band_particles() const
 CoupledStepper::~CoupledStepper()
 {
   particles_.set_force_hook({});
-  particles_.set_undamped_bodies({});
   continuum_.set_undamped_dofs({});
+  particles_.set_constrained_bodies({});
 }
 
 void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_time)

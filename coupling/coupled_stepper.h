@@ -21,10 +21,10 @@
 // Gravity and damping (quasi-static runs, the geostatic column): both sides keep their own
 // gravity (on the weighted masses: the band's weight is counted once) and their own damping. With
 // the multipliers (method 1), the tied particles and the nodes they interpolate from are exempt
-// from damping (DemSystem::set_undamped_bodies, ExplicitSolver::set_undamped_dofs): the
+// from damping (DemSystem::set_constrained_bodies, ExplicitSolver::set_undamped_dofs): the
 // multipliers make their half-step velocities equal for the undamped update, and a damping force
 // added afterwards would open a velocity gap every step. They are damped through the rest of both
-// models. Penalty springs and interface contacts are forces like the others: damped everywhere.
+// models (their rotation, which no constraint sets, stays damped). Penalty springs and interface contacts are forces like the others: damped everywhere.
 // Limits (checked, std::invalid_argument): one MPI rank; set up before the continuum steps (the
 // particles may have run before).
 // The diagnostics' energies are the conserved ones of an undamped run without body force: the
@@ -62,8 +62,10 @@ public:
   /// the particles' force hook). Throws std::invalid_argument as described above, or from the
   /// band (no particle in it, a particle outside the mesh, a particle in the continuum-only region).
   /// Methods 1 and 2 (`method` must not be an InterfaceCoupling: that one has no band).
+  /// `driven_below_weight`: the band's particles lighter than this are driven, not tied
+  /// (OverlapBand::driven_from; 0, the default, drives only those past the band).
   CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
-                 const CouplingMethod &method);
+                 const CouplingMethod &method, double driven_below_weight = 0.0);
   /// Method 3: the particles touch the continuum's boundary `method.boundary_id` (no overlap).
   /// Throws std::invalid_argument as above, or from InterfaceWall.
   CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const InterfaceCoupling &method);

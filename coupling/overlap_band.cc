@@ -118,4 +118,11 @@ dem::EnergyWeights OverlapBand::energy_weights(const dem::ParticleSet &particles
     weights.body_band_coordinate[b] = coordinate(Vec2(particles.x[b], particles.y[b]));
   return weights;
 }
+double OverlapBand::driven_from(double driven_below_weight) const
+{
+  if (!(driven_below_weight >= 0.0 && driven_below_weight < 1.0))
+    throw std::invalid_argument("overlap band: parameter 'driven below weight' = " +
+                                std::to_string(driven_below_weight) + " must lie in [0, 1)");
+  return (1.0 - driven_below_weight) * width_;
+}
 } // namespace geohybrid::coupling

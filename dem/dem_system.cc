@@ -279,24 +279,27 @@ void DemSystem::set_energy_weights(EnergyWeights weights)
   set_time_step(time_step_);
 }
 
-void DemSystem::set_undamped_bodies(const std::vector<std::uint32_t> &bodies)
+void DemSystem::set_constrained_bodies(const std::vector<std::uint32_t> &bodies)
 {
-  const std::size_t nb = particles_.n_bodies();
+  ParticleSet &p = particles_;
+  const std::size_t nb = p.n_bodies();
   if (bodies.empty())
+    damping_scale_ = SoaVector<double>();
+  else
     {
-      damping_scale_ = SoaVector<double>();
-      return;
+      SoaVector<double> scale;
+      scale.assign(nb, 1.0);
+      for (const std::uint32_t b : bodies)
+        {
+          if (b >= nb)
+            throw std::invalid_argument("DEM: constrained body index " + std::to_string(b) + " is out of range (" +
+                                        std::to_string(nb) + " bodies)");
+          if (p.inverse_mass[b] == 0.0)
+            throw std::invalid_argument("DEM: constrained body " + std::to_string(p.body_id[b]) + " is fixed");
+          scale[b] = 0.0;
+        }
+      damping_scale_ = std::move(scale);
     }
-  SoaVector<double> scale;
-  scale.assign(nb, 1.0);
-  for (const std::uint32_t b : bodies)
-    {
-      if (b >= nb)
-        throw std::invalid_argument("DEM: undamped body index " + std::to_string(b) + " is out of range (" +
-                                    std::to_string(nb) + " bodies)");
-      scale[b] = 0.0;
-    }
-  damping_scale_ = std::move(scale);
 }
 
 void DemSystem::bond_touching_contacts()
@@ -483,11 +486,10 @@ void final_kick_range(ParticleSet &p, const BodyLoopInput &in, std::size_t begin
           double dfx = fixed ? 0.0 : damping(fx[b], vx[b]);
           double dfy = fixed ? 0.0 : damping(fy[b], vy[b]);
           double dt = fixed ? 0.0 : damping(torque[b], omega[b]);
-          if constexpr (exempt)
+          if constexpr (exempt) // the translation of a constrained body (its rotation is free: damped)
             {
               dfx *= damping_scale[b];
               dfy *= damping_scale[b];
-              dt *= damping_scale[b];
             }
           damping_fx[b] = dfx;
           damping_fy[b] = dfy;

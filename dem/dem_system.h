@@ -206,13 +206,15 @@ public:
   using ForceHook = std::function<void(ParticleSet &particles, double impulse_time)>;
   void set_force_hook(ForceHook hook) { force_hook_ = std::move(hook); }
 
-  /// Bodies that local damping leaves alone: those whose velocity a coupling's constraint sets
-  /// (the bridging domain's tied particles: the multipliers are solved for the undamped kick, so a
-  /// damping force added after them would break the constraint; their motion is damped through
-  /// the continuum they follow). Indices of bodies; an empty list damps every body again. A
-  /// system with exempt bodies runs a separate compiled variant of the damped kick; the others
-  /// run the same code as before. Throws std::invalid_argument for an index out of range.
-  void set_undamped_bodies(const std::vector<std::uint32_t> &bodies);
+  /// Bodies whose translation a coupling's constraint sets (the bridging domain's tied
+  /// particles, coupling/lagrange_tie.h: their velocity is the continuum's). Local damping leaves
+  /// their translation alone: the multipliers are solved for the undamped kick, and a damping
+  /// force added after them would break the constraint (they are damped through the continuum
+  /// they follow). Their rotation, which no constraint sets, stays damped. Indices of bodies; an
+  /// empty list ends the exemption. A system with such bodies runs a separate compiled variant of
+  /// the damped kick; the others run the same code as before. Throws std::invalid_argument for an
+  /// index out of range or a fixed body.
+  void set_constrained_bodies(const std::vector<std::uint32_t> &bodies);
 
   /// Forces the next step to rebuild the neighbour lists (after moving particles or walls by hand).
   void request_neighbour_rebuild() { rebuild_needed_ = true; }
@@ -293,7 +295,7 @@ private:
   // Coupling (set_energy_weights, set_force_hook): unused by an uncoupled system.
   EnergyWeights energy_weights_;
   bool weighted_ = false;
-  SoaVector<double> damping_scale_; ///< per body 1 (damped) or 0 (exempt); empty: all damped
+  SoaVector<double> damping_scale_; ///< per body 1, or 0 if constrained (set_constrained_bodies); empty: none
   ForceHook force_hook_;
   double first_step_ = 0.0; ///< the step initialise_forces() prepares (its own step length is 0)
 };

@@ -313,6 +313,22 @@ void check_pull_spec(const PullSpec &spec)
 }
 } // namespace
 
+PullOut::PullOut(DemSystem &system, const PullSpec &spec, std::function<void()> advance)
+  : system_(system), spec_(spec), advance_(std::move(advance))
+{
+  if (!advance_)
+    throw std::invalid_argument("pull-out: the function that advances the system is empty");
+  check_pull_spec(spec);
+  ramp_time_ = 2.0 * spec.ramp_displacement / spec.rate;
+  SparSheet &sheet = system.sheets().at(0);
+  progress_.clamp_x0 = sheet.x[0];
+  progress_.time0 = system.time();
+  progress_.next_record = spec.record_interval;
+  sheet.prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
+  system.set_sheet_local_damping(spec.sheet_local_damping);
+  last_point_.head_tension = head_tension(system);
+}
+
 PullOut::PullOut(DemSystem &system, const PullSpec &spec) : system_(system), spec_(spec)
 {
   check_pull_spec(spec);
@@ -371,7 +387,10 @@ bool PullOut::step()
 {
   if (progress_.finished)
     return false;
-  system_.step();
+  if (advance_)
+    advance_();
+  else
+    system_.step();
   SparSheet &sheet = system_.sheets()[0];
   sheet.prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
   progress_.tension_sum += head_tension(system_);

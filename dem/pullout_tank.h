@@ -205,6 +205,11 @@ public:
   PullOut(DemSystem &system, const PullSpec &spec);
   /// Continues a pull from `progress` (of a system restored from the same checkpoint).
   PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &progress);
+  /// A pull of a system that something else advances (a coupled run's stepper, which steps the
+  /// particles with the continuum and keeps their forces, the coupling's included, current):
+  /// each step() calls `advance` instead of DemSystem::step, and the forces are not evaluated
+  /// again at the start (that would apply the coupling's forces twice). Throws as the first.
+  PullOut(DemSystem &system, const PullSpec &spec, std::function<void()> advance);
 
   /// The point at the start (displacement 0, the tension of the filled tank).
   PullPoint start_point() const;
@@ -226,6 +231,7 @@ private:
   DemSystem &system_;
   PullSpec spec_;
   PullProgress progress_;
+  std::function<void()> advance_; ///< empty: DemSystem::step
   double ramp_time_ = 0.0;
   PullPoint last_point_;
 };

@@ -167,6 +167,8 @@ private:
   void assemble_external_force(double time);
   /// The prescribed displacements at `time`, on the locally owned constrained DoFs.
   std::map<dealii::types::global_dof_index, double> prescribed_displacements(double time) const;
+  std::map<dealii::types::global_dof_index, double> prescribed_; ///< of the last step
+  bool prescribed_cached_ = false; ///< prescribed_ holds the fixed supports (no displacement functions)
   void take_step(double dt);
 
   SoilModel soil_;

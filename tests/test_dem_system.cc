@@ -817,17 +817,17 @@ TEST(LocalDamping, ExemptBodiesFallFreely)
   s.local_damping = 0.7;
   s.time_step = 1e-5;
   DemSystem system(p, LinearContactLaw(), s);
-  system.set_undamped_bodies({0});
+  system.set_constrained_bodies({0});
   system.initialise_forces();
   for (int n = 0; n < 100; ++n)
     system.step();
   const double t = 100 * 1e-5;
   EXPECT_NEAR(system.particles().vy[0], -9.81 * t, 1e-12);
   EXPECT_NEAR(system.particles().vy[1], -(1.0 - 0.7) * 9.81 * t, 0.02 * 9.81 * t);
-  system.set_undamped_bodies({}); // damped again (from the second half kick on: the first step's
+  system.set_constrained_bodies({}); // damped again (from the second half kick on: the first step's
   system.step();                   // first half kick still has no damping force)
   const double v0 = system.particles().vy[0];
   system.step();
   EXPECT_NEAR(system.particles().vy[0] - v0, -(1.0 - 0.7) * 9.81 * 1e-5, 1e-12);
-  EXPECT_THROW(system.set_undamped_bodies({2}), std::invalid_argument);
+  EXPECT_THROW(system.set_constrained_bodies({2}), std::invalid_argument);
 }

@@ -1,0 +1,300 @@
+#include "hybrid_pullout.h"
+
+#include "dem/measurements.h"
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace geohybrid::coupling
+{
+namespace
+{
+void require(bool ok, const std::string &where, const std::string &parameter, double value, const std::string &why)
+{
+  if (ok)
+    return;
+  std::ostringstream message;
+  message << where << ": parameter '" << parameter << "' = " << value << " " << why;
+  throw std::invalid_argument(message.str());
+}
+
+/// Steps of at most `cell` [m] between consecutive breakpoints (increasing; equal ones skipped).
+std::vector<double> mesh_steps(const std::vector<double> &breakpoints, double cell)
+{
+  std::vector<double> steps;
+  for (std::size_t k = 1; k < breakpoints.size(); ++k)
+    {
+      const double length = breakpoints[k] - breakpoints[k - 1];
+      if (length <= 1e-12)
+        continue;
+      const auto n = static_cast<unsigned int>(std::ceil(length / cell - 1e-9));
+      steps.insert(steps.end(), n, length / n);
+    }
+  return steps;
+}
+} // namespace
+
+void HybridRegionSpec::validate(const std::string &where) const
+{
+  require(margin > 0.0 && std::isfinite(margin), where, "Hybrid/DEM region margin", margin, "must be positive [m]");
+  require(lift_thickness > 0.0 && std::isfinite(lift_thickness), where, "Hybrid/lift thickness", lift_thickness,
+          "must be positive [m]");
+  require(band_width >= 0.0 && std::isfinite(band_width), where, "Hybrid/band width", band_width,
+          "must be zero (automatic) or positive [m]");
+  require(cell_size >= 0.0 && std::isfinite(cell_size), where, "Hybrid/cell size", cell_size,
+          "must be zero (automatic) or positive [m]");
+  require(driven_below_weight >= 0.0 && driven_below_weight < 1.0, where, "Hybrid/driven below weight",
+          driven_below_weight, "must lie in [0, 1) [-]");
+  if (const auto *penalty = std::get_if<PenaltyCoupling>(&method))
+    penalty->validate();
+  if (std::holds_alternative<InterfaceCoupling>(method))
+    throw std::invalid_argument(where + ": parameter 'Hybrid/coupling method' = interface is not available for the "
+                                        "pull-out yet (it has no overlap band); use multipliers or penalty");
+}
+
+void HybridPullOutSpec::validate(const std::string &where) const
+{
+  tank.validate(where);
+  region.validate(where);
+  require(continuum.k0 >= 0.0 && std::isfinite(continuum.k0), where, "Continuum/K0", continuum.k0,
+          "must be zero (the soil's 1 - sin phi) or positive [-]");
+  require(continuum.local_damping >= 0.0 && continuum.local_damping < 1.0, where, "Continuum/local damping",
+          continuum.local_damping, "must lie in [0, 1) [-]");
+}
+
+ParticleBox particle_box(const HybridPullOutSpec &spec, const std::string &where)
+{
+  spec.validate(where);
+  const dem::PullOutGeometry &g = spec.tank.geometry;
+  const double margin = spec.region.margin;
+  const double sheet_level = g.sheet_level();
+  const bool wrap = g.anchorage == dem::Anchorage::wrap_around;
+  const double rise = wrap ? g.return_height : 0.0; // from the lower part to the upper part
+  ParticleBox box;
+  // Below the sheet: `margin`, or down to the base; the lifts divide it evenly.
+  const double below = std::min(margin, sheet_level);
+  const auto lifts_below = static_cast<std::size_t>(std::max(1.0, std::ceil(below / spec.region.lift_thickness - 1e-9)));
+  const double lift = below / static_cast<double>(lifts_below);
+  box.y0 = sheet_level - below;
+  box.bottom_shared = box.y0 > 1e-9;
+  // Above: lifts of the same thickness up to `margin` above the sheet's highest part, or to the
+  // surface if it falls on a lift boundary (else the last whole lift below it).
+  auto lifts_above = static_cast<std::size_t>(std::ceil((rise + margin) / lift - 1e-9));
+  const double room = (g.fill_height - sheet_level) / lift;
+  if (static_cast<double>(lifts_above) >= room - 1e-6)
+    lifts_above = static_cast<std::size_t>(std::floor(room + 1e-6));
+  box.y1 = sheet_level + static_cast<double>(lifts_above) * lift;
+  box.top_shared = box.y1 < g.fill_height - 1e-9;
+  if (box.y1 - (sheet_level + rise) < 0.5 * margin && box.top_shared)
+    throw std::invalid_argument(where + ": parameter 'Hybrid/DEM region margin' = " + std::to_string(margin) +
+                                " m leaves the particle box's top " + std::to_string(box.y1 - sheet_level - rise) +
+                                " m above the sheet, less than half the margin (lifts of " + std::to_string(lift) +
+                                " m): change the margin or 'Hybrid/lift thickness'");
+  box.x1 = g.tank_length;
+  box.x0 = std::max(0.0, g.tank_length - g.anchorage_length - margin);
+  box.left_shared = box.x0 > 1e-9;
+  box.n_lifts = lifts_below + lifts_above;
+  if (!box.left_shared && !box.bottom_shared && !box.top_shared)
+    throw std::invalid_argument(where + ": parameter 'Hybrid/DEM region margin' = " + std::to_string(margin) +
+                                " m puts the whole tank in the particle box: use 'mode' = dem");
+  const double tank_area = g.tank_length * g.fill_height, box_area = (box.x1 - box.x0) * (box.y1 - box.y0);
+  box.n_particles = static_cast<std::size_t>(
+    std::lround(static_cast<double>(spec.tank.filling.n_particles) * box_area / tank_area));
+
+  // The box as a tank of its own, in its frame (origin at (x0, y0)).
+  dem::PullOutTankSpec &t = box.box_tank;
+  t = spec.tank;
+  t.geometry.tank_length = box.x1 - box.x0;
+  t.geometry.fill_height = box.y1 - box.y0;
+  t.geometry.cover = box.y1 - sheet_level;
+  if (wrap)
+    t.geometry.upper_cover = box.y1 - (sheet_level + rise);
+  t.filling.n_layers = box.n_lifts;
+  t.filling.n_particles = box.n_particles;
+  if (!t.filling.layer_porosities.empty())
+    {
+      double mean = 0.0;
+      for (const double n : t.filling.layer_porosities)
+        mean += n / static_cast<double>(t.filling.layer_porosities.size());
+      t.filling.target_porosity = mean;
+      t.filling.layer_porosities.clear();
+    }
+  t.validate(where + " (the particle box)");
+  return box;
+}
+
+HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &where,
+                             const std::function<void(double)> &progress)
+  : spec_(spec), box_(particle_box(spec, where))
+{
+  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    throw std::invalid_argument(where + ": 'mode' = hybrid runs on one MPI rank");
+  tank_ = std::make_unique<dem::PullOutTank>(dem::fill_pull_out_tank(box_.box_tank, progress));
+  dem::DemSystem &particles = tank_->tank.system;
+  const dem::ParticleSet &p = particles.particles();
+  set_up_.n_particles = p.n_bodies();
+  set_up_.particle_time_step = particles.time_step();
+  set_up_.fill_steps = particles.step_count();
+
+  // The band and the pad from the grains as filled: w four mean disc diameters unless given, the
+  // pad one branch (twice the largest reach of a body's discs from its centre).
+  double reach = 0.0, diameters = 0.0;
+  for (std::size_t d = 0; d < p.n_discs_total(); ++d)
+    {
+      reach = std::max(reach, std::hypot(p.disc_offset_x[d], p.disc_offset_y[d]) + p.disc_radius[d]);
+      diameters += 2.0 * p.disc_radius[d];
+    }
+  const double w = spec.region.band_width > 0.0 ? spec.region.band_width
+                                                 : 4.0 * diameters / static_cast<double>(p.n_discs_total());
+  const double cell = spec.region.cell_size > 0.0 ? spec.region.cell_size : 0.5 * w;
+  const double pad = 2.0 * reach;
+  set_up_.band_width = w;
+  set_up_.cell_size = cell;
+  set_up_.pad = pad;
+
+  // The DEM core, in the box's frame: the box less pad and band on its shared sides; the other
+  // sides lie past the tank's walls (they idle).
+  const dem::PullOutGeometry &g = spec.tank.geometry;
+  const double width = box_.x1 - box_.x0, height = box_.y1 - box_.y0;
+  const double beyond = 1.0 + g.tank_length + g.fill_height;
+  const double cx0 = box_.left_shared ? pad + w : -beyond, cx1 = width + beyond;
+  const double cy0 = box_.bottom_shared ? pad + w : -beyond;
+  const double cy1 = box_.top_shared ? height - pad - w : height + beyond;
+  if (!(cx1 > cx0 && cy1 > cy0))
+    throw std::invalid_argument(where + ": parameter 'Hybrid/DEM region margin' = " + std::to_string(spec.region.margin) +
+                                " m leaves no DEM core inside the pad and the band");
+  band_ = std::make_unique<OverlapBand>(
+    OverlapBand::around_convex_region({Vec2(cx0, cy0), Vec2(cx1, cy0), Vec2(cx1, cy1), Vec2(cx0, cy1)}, w));
+  // The sheet stays in the core, one branch clear of the band (its contacts are not weighted and
+  // the tied particles' ties must not touch it).
+  const dem::SparSheet &sheet = particles.sheets().at(0);
+  for (std::size_t k = 0; k < sheet.n_nodes(); ++k)
+    {
+      const double s = band_->coordinate(Vec2(sheet.x[k], sheet.y[k]));
+      if (s > -pad)
+        {
+          std::ostringstream message;
+          message << where << ": parameter 'Hybrid/DEM region margin' = " << spec.region.margin
+                  << " m is too small: sheet node " << k << " lies " << -s << " m inside the DEM core's edge, "
+                  << "less than a branch (" << pad << " m); the margin must exceed the pad and the band ("
+                  << pad + w << " m) by a branch";
+          throw std::invalid_argument(message.str());
+        }
+    }
+
+  // The continuum's mesh: the tank in the box's frame, mesh lines on the core's and the band's
+  // edges, the core's cells removed.
+  const double tank_x0 = -box_.x0, tank_x1 = g.tank_length - box_.x0;
+  const double tank_y0 = -box_.y0, tank_y1 = g.fill_height - box_.y0;
+  std::vector<double> xs{tank_x0}, ys{tank_y0};
+  if (box_.left_shared)
+    xs.insert(xs.end(), {cx0 - w, cx0});
+  xs.push_back(tank_x1);
+  if (box_.bottom_shared)
+    ys.insert(ys.end(), {cy0 - w, cy0});
+  if (box_.top_shared)
+    ys.insert(ys.end(), {cy1, cy1 + w});
+  ys.push_back(tank_y1);
+  dealii::Triangulation<fem::dim> tank_mesh;
+  dealii::GridGenerator::subdivided_hyper_rectangle(tank_mesh, {mesh_steps(xs, cell), mesh_steps(ys, cell)},
+                                                    dealii::Point<fem::dim>(tank_x0, tank_y0),
+                                                    dealii::Point<fem::dim>(tank_x1, tank_y1), true);
+  mesh_ = continuum_region_mesh(tank_mesh, *band_);
+  set_up_.n_cells = mesh_->n_global_active_cells();
+
+  // The continuum: smooth back and front walls (ids 0 and 1 of the colorized rectangle), fixed
+  // base (2), free top (3); only the walls it reaches.
+  std::set<dealii::types::boundary_id> ids;
+  for (const auto &face : mesh_->active_face_iterators())
+    if (face->at_boundary())
+      ids.insert(face->boundary_id());
+  fem::BoundaryConditions conditions;
+  if (ids.count(0))
+    conditions.displacements.push_back({0, true, false, nullptr});
+  if (ids.count(1))
+    conditions.displacements.push_back({1, true, false, nullptr});
+  if (ids.count(2))
+    conditions.displacements.push_back({2, true, true, nullptr});
+  const double gravity = spec.tank.filling.gravity;
+  fem::ExplicitSettings settings;
+  settings.element_degree = 1;
+  settings.density = spec.tank.unit_weight / gravity;
+  settings.gravity[1] = -gravity;
+  settings.damping.local = spec.continuum.local_damping;
+  const fem::SoilModel soil(spec.continuum.soil);
+  continuum_ = std::make_unique<fem::ExplicitSolver>(*mesh_, soil, conditions, settings);
+  fem::GeostaticStress geostatic;
+  geostatic.surface_elevation = tank_y1;
+  geostatic.unit_weight = spec.tank.unit_weight;
+  geostatic.k0 = spec.continuum.k0 > 0.0 ? spec.continuum.k0 : soil.default_k0();
+  continuum_->set_initial_stress(geostatic);
+
+  // The temporary walls on the shared sides are parked away (the lid already is, above the
+  // box); the driven particles that stood against them now hold the grains, moved by the continuum.
+  const double park = 10.0 * pad + 0.05;
+  std::vector<dem::Wall> &walls = particles.walls();
+  if (box_.left_shared)
+    walls[tank_->tank.walls.left].translate(Vec2(-park, 0.0));
+  if (box_.bottom_shared)
+    walls[tank_->tank.walls.base].translate(Vec2(0.0, -park));
+  particles.request_neighbour_rebuild();
+  stepper_ = std::make_unique<CoupledStepper>(particles, *continuum_, *band_, spec.region.method,
+                                              spec.region.driven_below_weight);
+  set_up_.n_tied = stepper_->band_particles().size();
+  set_up_.n_driven = stepper_->band_particles().driven_body.size();
+  set_up_.time_step = stepper_->time_step();
+
+  // The overburden now comes through the band: settle together, both models below the fill's
+  // unbalanced-force ratio, and for at least the time a P-wave takes to cross the tank ten times
+  // (the particles were at rest under their own weight alone: their ratio starts low).
+  const double target = spec.tank.filling.equilibrium_unbalanced_ratio;
+  const double young = spec.continuum.soil.young_modulus, nu = spec.continuum.soil.poisson_ratio;
+  const double p_wave_modulus = young * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  const double crossing = std::max(g.fill_height, g.tank_length) / std::sqrt(p_wave_modulus / settings.density);
+  const auto min_steps = static_cast<std::uint64_t>(10.0 * crossing / stepper_->time_step());
+  for (;;)
+    {
+      stepper_->run_steps(500);
+      set_up_.settling_steps += 500;
+      set_up_.settled_unbalanced_ratio =
+        std::max(dem::unbalanced_force_ratio(particles), continuum_->out_of_balance_ratio());
+      if (set_up_.settled_unbalanced_ratio < target && set_up_.settling_steps >= min_steps)
+        break;
+      if (set_up_.settling_steps >= spec.max_settling_steps)
+        {
+          std::ostringstream message;
+          message << where << ": the coupled model did not settle in " << set_up_.settling_steps
+                  << " steps (unbalanced-force ratio " << set_up_.settled_unbalanced_ratio << ", target " << target
+                  << ")";
+          throw std::runtime_error(message.str());
+        }
+    }
+}
+
+HybridPullOut::~HybridPullOut() = default;
+
+std::vector<dem::PullPoint> HybridPullOut::pull(const dem::PullSpec &spec,
+                                                const std::function<void(const dem::PullPoint &)> &record)
+{
+  dem::DemSystem &particles = tank_->tank.system;
+  dem::PullOut pull(particles, spec, [this] { stepper_->step(); });
+  std::vector<dem::PullPoint> points{pull.start_point()};
+  if (record)
+    record(points.back());
+  while (!pull.finished())
+    if (pull.step())
+      {
+        points.push_back(pull.last_point());
+        if (record)
+          record(points.back());
+      }
+  pull.stop_clamp();
+  return points;
+}
+} // namespace geohybrid::coupling

@@ -1,0 +1,152 @@
+#pragma once
+// The hybrid pull-out (issue 6, `geohybrid pullout` with mode = hybrid): the INSA tank of the DEM
+// pull-out (dem/pullout_tank.h) with particles only in a box round the anchorage and the rest of
+// the tank a deal.II continuum, tied across an overlap band by the coupled stepper.
+//
+// The set-up, in the tank's frame (x from the back wall to the front wall, y up):
+//
+//   y = fill  +-------------------------------------------------------+
+//             |                 continuum                             |
+//             |        +----------------- particle box ---------------+
+//             |        |  band | pad                                  |
+//             |        |   +------------- DEM core -------------------|  front wall
+//             |        |   |      ==========  sheet  =================== o clamp
+//             |        |   +------------------------------------------|
+//             |        +----------------------------------------------+
+//   y = 0     +-------------------------------------------------------+
+//
+// - The particle box reaches `margin` beyond the sheet below it, above it (above the upper part
+//   of a wrap-around) and behind its far end, clipped to the tank: a side of the box on a tank
+//   wall keeps that wall, the others are shared with the continuum. The box is filled in lifts as
+//   the DEM tank is (dem/tank_filling.h), its walls where the tank's are and temporary walls on
+//   its shared sides, with as many particles as the whole tank would have in its area (the same
+//   grain size); the sheet is laid on the lift at its depth.
+// - The DEM core is the box less, on each shared side, a pad of one branch length (the longest
+//   contact between two bodies: the driven particles of coupled_stepper.h) and the band (width w).
+//   The continuum's mesh is the tank's with the core's cells removed (continuum_region.h); the
+//   core's and the band's edges lie on mesh lines. It starts at the geostatic stress of the whole
+//   tank (sigma_v = gamma (fill - y), sigma_h = K0 sigma_v), u = 0, under gravity; the base is
+//   fixed, the back and front walls are smooth rollers, the top is free.
+// - The temporary walls are parked away, the coupling ties the particles to the continuum (the
+//   overburden now comes through the band), and both settle together, damped, until the
+//   particles' unbalanced-force ratio is below the fill's; then the clamp pulls the sheet as in
+//   the DEM pull-out (dem::PullOut, advanced by the coupled stepper).
+//
+// What is left out, on purpose or not yet: the sheet must lie in the DEM core (it does not cross
+// the band; `margin` is checked against that); wall contacts of the band's particles (at the front
+// wall, at the base) are not weighted (DemSystem::set_energy_weights); the continuum's walls are
+// smooth (the DEM's have the wall friction); one MPI rank; no checkpoints of the coupled run.
+#include "coupling/continuum_region.h"
+#include "coupling/coupled_stepper.h"
+#include "coupling/coupling_method.h"
+#include "coupling/overlap_band.h"
+#include "dem/pullout_tank.h"
+#include "fem/constitutive/soil_model.h"
+#include "fem/explicit_solver.h"
+
+#include <deal.II/distributed/tria.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace geohybrid::coupling
+{
+/// Where the particles are and how they meet the continuum.
+struct HybridRegionSpec
+{
+  double margin = 0.1;           ///< from the sheet to the particle box's edge, below, above and behind it [m]
+  double lift_thickness = 0.05;  ///< the box's lifts are at most this thick [m]
+  double band_width = 0.0;       ///< w; 0 = four mean grain sizes [m]
+  double cell_size = 0.0;        ///< of the continuum's cells, at most; 0 = w / 2 [m]
+  CouplingMethod method = LagrangeMultiplierCoupling{};
+  /// The band's particles lighter than this are driven by the continuum, not tied to it: the
+  /// stable step then stays within about a third of the particles' own (OverlapBand::driven_from;
+  /// with 0 a tank's band took it from 4e-5 s to 1.6e-7 s) [-].
+  double driven_below_weight = 0.1;
+  /// Throws std::invalid_argument naming `where` and the parameter.
+  void validate(const std::string &where) const;
+};
+
+/// The continuum soil of the far field (from the biaxial calibration: `geohybrid biaxial` writes it).
+struct HybridContinuumSpec
+{
+  fem::SoilParameters soil;
+  double k0 = 0.0;             ///< sigma_h / sigma_v at rest; 0 takes the soil's default (1 - sin phi) [-]
+  double local_damping = 0.7;  ///< the continuum's, as the grains' [-]
+};
+
+struct HybridPullOutSpec
+{
+  /// The whole tank: its geometry, sheet, soil and filling (n_particles for the whole tank).
+  dem::PullOutTankSpec tank;
+  HybridRegionSpec region;
+  HybridContinuumSpec continuum;
+  /// Settling of the coupled model before the pull: until the particles' unbalanced-force ratio
+  /// is below the fill's (tank.filling.equilibrium_unbalanced_ratio), at most this many steps.
+  std::uint64_t max_settling_steps = 200000;
+  void validate(const std::string &where) const;
+};
+
+/// The particle box in the tank's frame, and which of its sides the continuum shares [m].
+struct ParticleBox
+{
+  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
+  bool left_shared = false, bottom_shared = false, top_shared = false;
+  std::size_t n_lifts = 0;
+  std::size_t n_particles = 0; ///< the whole tank's number in proportion to the box's area
+  /// The DEM tank spec of the box, in the box's frame (its origin at (x0, y0)).
+  dem::PullOutTankSpec box_tank;
+};
+/// Throws std::invalid_argument naming 'DEM region margin' if the box would hold the whole tank
+/// (use mode = dem) or leave a sliver of continuum thinner than the band, as HybridPullOutSpec::validate.
+ParticleBox particle_box(const HybridPullOutSpec &spec, const std::string &where);
+
+/// What the set-up measured.
+struct HybridSetUp
+{
+  std::size_t n_particles = 0, n_cells = 0, n_tied = 0, n_driven = 0;
+  double band_width = 0.0, cell_size = 0.0, pad = 0.0; ///< [m]
+  std::uint64_t fill_steps = 0, settling_steps = 0;
+  double settled_unbalanced_ratio = 0.0;
+  double time_step = 0.0;          ///< the coupled step [s]
+  double particle_time_step = 0.0; ///< the particles' own step, before the coupling [s]
+};
+
+class HybridPullOut
+{
+public:
+  /// Fills the particle box, builds the continuum, ties them and settles the coupled model.
+  /// `progress` (optional) gets a fraction in [0, 1] of the fill. Throws std::invalid_argument
+  /// for bad input (naming the parameter), std::runtime_error if the fill or the settling fails.
+  HybridPullOut(const HybridPullOutSpec &spec, const std::string &where,
+                const std::function<void(double)> &progress = {});
+  HybridPullOut(const HybridPullOut &) = delete;
+  HybridPullOut &operator=(const HybridPullOut &) = delete;
+  ~HybridPullOut();
+
+  /// Pulls the clamp as dem::pull_out does (the same PullSpec), the coupled stepper advancing
+  /// both models; `record` is called with each point.
+  std::vector<dem::PullPoint> pull(const dem::PullSpec &spec,
+                                   const std::function<void(const dem::PullPoint &)> &record = {});
+
+  const HybridSetUp &set_up() const { return set_up_; }
+  const ParticleBox &box() const { return box_; }
+  const dem::PullOutTank &particles() const { return *tank_; }
+  dem::DemSystem &particle_system() { return tank_->tank.system; }
+  const fem::ExplicitSolver &continuum() const { return *continuum_; }
+  CoupledStepper &stepper() { return *stepper_; }
+  const OverlapBand &band() const { return *band_; }
+
+private:
+  HybridPullOutSpec spec_;
+  ParticleBox box_;
+  std::unique_ptr<dem::PullOutTank> tank_;
+  std::unique_ptr<dealii::parallel::distributed::Triangulation<fem::dim>> mesh_;
+  std::unique_ptr<fem::ExplicitSolver> continuum_;
+  std::unique_ptr<OverlapBand> band_;
+  std::unique_ptr<CoupledStepper> stepper_;
+  HybridSetUp set_up_;
+};
+} // namespace geohybrid::coupling

@@ -1,0 +1,151 @@
+// The hybrid pull-out (issue 6, coupling/hybrid_pullout.h): particles only in a box round the
+// anchorage, the continuum elsewhere, tied across the band; its box, its refusals, and a small
+// tank pulled.
+#include "test_coupling_support.h"
+
+#include "coupling/hybrid_pullout.h"
+#include "dem/measurements.h"
+#include "dem/conventions.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+using namespace geohybrid;
+using namespace geohybrid::coupling;
+using namespace geohybrid::coupling::testing;
+
+namespace
+{
+/// The paper's tank (1.5 m x 0.6 m, run-out L = 1 m under H = 0.4 m, 25,000 clusters), a
+/// 0.1 m margin.
+HybridPullOutSpec full_size_spec()
+{
+  HybridPullOutSpec s;
+  s.tank.filling.n_layers = 3;
+  s.tank.filling.n_particles = 25000;
+  s.region.margin = 0.1;
+  return s;
+}
+
+TEST(ParticleBox, SpansTheSheetAndTheMarginInWholeLifts)
+{
+  const ParticleBox box = particle_box(full_size_spec(), "test");
+  // Sheet at y = 0.2 from x = 0.5 to the front wall at 1.5: the box [0.4, 1.5] x [0.1, 0.3], two
+  // lifts of 0.05 m below the sheet and two above.
+  EXPECT_NEAR(box.x0, 0.4, 1e-12);
+  EXPECT_NEAR(box.x1, 1.5, 1e-12);
+  EXPECT_NEAR(box.y0, 0.1, 1e-12);
+  EXPECT_NEAR(box.y1, 0.3, 1e-12);
+  EXPECT_TRUE(box.left_shared && box.bottom_shared && box.top_shared);
+  EXPECT_EQ(box.n_lifts, 4u);
+  EXPECT_EQ(box.n_particles, 25000u * 11u * 2u / 90u); // 0.22 m^2 of 0.9 m^2
+  EXPECT_NEAR(box.box_tank.geometry.cover, 0.1, 1e-12);
+  EXPECT_NEAR(box.box_tank.geometry.sheet_level(), 0.1, 1e-12);
+
+  // The wrap-around (D1 = 0.2, B = 0.25): the box reaches the margin above its upper part.
+  HybridPullOutSpec wrap = full_size_spec();
+  wrap.tank.geometry.anchorage = dem::Anchorage::wrap_around;
+  wrap.tank.geometry.return_height = 0.2;
+  wrap.tank.geometry.upper_cover = 0.2;
+  wrap.tank.geometry.upper_length = 0.25;
+  const ParticleBox w = particle_box(wrap, "test");
+  EXPECT_NEAR(w.y1, 0.5, 1e-12);
+  EXPECT_NEAR(w.box_tank.geometry.upper_cover, 0.1, 1e-12);
+  EXPECT_EQ(w.n_lifts, 8u);
+
+  // Down to the base: the base is the tank's, not shared.
+  HybridPullOutSpec deep = full_size_spec();
+  deep.region.margin = 0.25;
+  const ParticleBox d = particle_box(deep, "test");
+  EXPECT_FALSE(d.bottom_shared);
+  EXPECT_NEAR(d.y0, 0.0, 1e-12);
+}
+
+TEST(ParticleBox, RefusesAMarginThatLeavesNoContinuumAndBadInput)
+{
+  HybridPullOutSpec whole = full_size_spec();
+  whole.region.margin = 1.0;
+  EXPECT_NE(invalid_argument_message([&] { particle_box(whole, "test.prm"); }).find("DEM region margin"), std::string::npos);
+  HybridPullOutSpec negative = full_size_spec();
+  negative.region.margin = -0.1;
+  EXPECT_NE(invalid_argument_message([&] { particle_box(negative, "test.prm"); }).find("DEM region margin"), std::string::npos);
+  HybridPullOutSpec interface = full_size_spec();
+  interface.region.method = InterfaceCoupling{};
+  EXPECT_NE(invalid_argument_message([&] { particle_box(interface, "test.prm"); }).find("coupling method"), std::string::npos);
+}
+
+/// A small tank: 0.4 m x 0.2 m, the sheet 0.25 m long at 0.1 m depth, grains of about 4 mm (4,000
+/// in the whole tank, about 1,500 in the box), the soft contacts of the DEM pull-out tests.
+HybridPullOutSpec small_spec(const CouplingMethod &method)
+{
+  HybridPullOutSpec s;
+  dem::PullOutTankSpec &t = s.tank;
+  t.geometry.tank_length = 0.4;
+  t.geometry.fill_height = 0.2;
+  t.geometry.cover = 0.1;
+  t.geometry.anchorage_length = 0.25;
+  t.geometry.clamp_offset = 0.01;
+  t.max_segment_length = 0.01;
+  t.filling.n_layers = 2;
+  t.filling.n_particles = 4000;
+  t.filling.size_distribution = dem::SizeDistribution::uniform(0.8);
+  t.filling.target_porosity = 0.25;
+  t.filling.growth_stress = 5e3;
+  t.filling.equilibrium_unbalanced_ratio = 1e-3;
+  t.filling.seed = 3;
+  for (dem::ContactParameters *c : {&t.filling.particle_contact, &t.sheet.interface})
+    {
+      c->normal_stiffness = 1e7;
+      c->shear_stiffness = 0.5e7;
+    }
+  s.region.margin = 0.05;
+  s.region.lift_thickness = 0.05;
+  s.region.method = method;
+  s.continuum.soil.kind = fem::SoilModelKind::linear_elastic;
+  s.continuum.soil.young_modulus = 5e6;
+  s.continuum.soil.poisson_ratio = 0.3;
+  return s;
+}
+
+TEST(HybridPullOut, SmallTankCarriesTheOverburdenThroughTheBandAndPulls)
+{
+  const HybridPullOutSpec spec = small_spec(LagrangeMultiplierCoupling{});
+  HybridPullOut hybrid(spec, "test");
+  const HybridSetUp &s = hybrid.set_up();
+  std::cout << "hybrid: " << s.n_particles << " particles (" << s.n_tied << " tied, " << s.n_driven << " driven), "
+            << s.n_cells << " cells; band " << s.band_width << " m, pad " << s.pad << " m, cells " << s.cell_size
+            << " m; fill " << s.fill_steps << " steps, settled in " << s.settling_steps << " (ratio "
+            << s.settled_unbalanced_ratio << "), dt " << s.time_step << " s (the particles alone: " << s.particle_time_step
+            << " s)" << std::endl;
+  const ParticleBox &box = hybrid.box();
+  const dem::PullOutTank &tank = hybrid.particles();
+  const dem::SheetLevelStress stress =
+    dem::measure_sheet_level_stress(hybrid.particle_system(), tank, box.box_tank.geometry, 0.02);
+  const double gamma_H = spec.tank.unit_weight * (spec.tank.geometry.fill_height - (box.y0 + tank.sheet_level));
+  std::cout << "sigma_v on the sheet's top face " << stress.top_face << " Pa, Love-Weber above " << stress.love_weber_above
+            << " Pa, gamma H " << gamma_H << " Pa" << std::endl;
+  EXPECT_GT(stress.love_weber_above, 0.8 * gamma_H);
+  EXPECT_LT(stress.love_weber_above, 1.2 * gamma_H);
+
+  dem::PullSpec pull;
+  pull.rate = 0.005;
+  pull.final_displacement = 0.002;
+  pull.record_interval = 0.0002;
+  const double mu = std::tan(dem::degrees_to_radians(spec.tank.sheet.interface.friction_angle_deg));
+  const std::vector<dem::PullPoint> curve = hybrid.pull(pull, [&](const dem::PullPoint &p) {
+    const dem::HeadTensionParts parts = dem::head_tension_parts(hybrid.particle_system());
+    std::cout << "u " << p.head_displacement << " m: T " << p.head_tension << " N/m; tan(delta) N "
+              << mu * parts.normal_force << " N/m" << std::endl;
+  });
+  ASSERT_EQ(curve.size(), 11u);
+  double T_max = 0.0;
+  for (const dem::PullPoint &p : curve)
+    T_max = std::max(T_max, p.head_tension);
+  const double one_face = gamma_H * spec.tank.geometry.anchorage_length * mu;
+  std::cout << "T_max " << T_max << " N/m = " << T_max / one_face << " x one face" << std::endl;
+  EXPECT_GT(T_max, one_face);
+  EXPECT_LT(T_max, 4.0 * one_face);
+}
+} // namespace
