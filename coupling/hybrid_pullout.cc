@@ -24,18 +24,40 @@ void require(bool ok, const std::string &where, const std::string &parameter, do
   throw std::invalid_argument(message.str());
 }
 
-/// Steps of at most `cell` [m] between consecutive breakpoints (increasing; equal ones skipped).
-std::vector<double> mesh_steps(const std::vector<double> &breakpoints, double cell)
+/// Mesh steps over [a, b]: `cell` [m] at most, growing by `growth` per cell away from the fine end(s)
+/// up to `far_cell`, scaled to fit exactly. `fine_at_start`, `fine_at_end`: where the band is.
+std::vector<double> graded_steps(double a, double b, double cell, double far_cell, bool fine_at_start, bool fine_at_end)
 {
+  const double length = b - a;
+  if (length <= 1e-12)
+    return {};
+  constexpr double growth = 1.3;
   std::vector<double> steps;
-  for (std::size_t k = 1; k < breakpoints.size(); ++k)
+  if (!fine_at_start && !fine_at_end)
     {
-      const double length = breakpoints[k] - breakpoints[k - 1];
-      if (length <= 1e-12)
-        continue;
-      const auto n = static_cast<unsigned int>(std::ceil(length / cell - 1e-9));
-      steps.insert(steps.end(), n, length / n);
+      const auto n = static_cast<unsigned int>(std::ceil(length / far_cell - 1e-9));
+      return std::vector<double>(n, length / n);
     }
+  if (fine_at_start && fine_at_end)
+    {
+      std::vector<double> half = graded_steps(a, a + 0.5 * length, cell, far_cell, true, false);
+      steps = half;
+      steps.insert(steps.end(), half.rbegin(), half.rend());
+      return steps;
+    }
+  // From the fine end: cell, cell g, cell g^2, ... capped at far_cell, until the interval is
+  // covered; then all scaled down to fit (none grows past its cap).
+  double covered = 0.0, h = cell;
+  while (covered < length - 1e-12)
+    {
+      steps.push_back(h);
+      covered += h;
+      h = std::min(far_cell, h * growth);
+    }
+  for (double &step : steps)
+    step *= length / covered;
+  if (fine_at_end)
+    std::reverse(steps.begin(), steps.end());
   return steps;
 }
 } // namespace
@@ -48,6 +70,8 @@ void HybridRegionSpec::validate(const std::string &where) const
   require(band_width >= 0.0 && std::isfinite(band_width), where, "Hybrid/band width", band_width,
           "must be zero (automatic) or positive [m]");
   require(cell_size >= 0.0 && std::isfinite(cell_size), where, "Hybrid/cell size", cell_size,
+          "must be zero (automatic) or positive [m]");
+  require(far_cell_size >= 0.0 && std::isfinite(far_cell_size), where, "Hybrid/far cell size", far_cell_size,
           "must be zero (automatic) or positive [m]");
   require(driven_below_weight >= 0.0 && driven_below_weight < 1.0, where, "Hybrid/driven below weight",
           driven_below_weight, "must lie in [0, 1) [-]");
@@ -192,17 +216,42 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
   // edges, the core's cells removed.
   const double tank_x0 = -box_.x0, tank_x1 = g.tank_length - box_.x0;
   const double tank_y0 = -box_.y0, tank_y1 = g.fill_height - box_.y0;
-  std::vector<double> xs{tank_x0}, ys{tank_y0};
+  // Cells of `cell` in the band and over the DEM core's span, growing to `far` away from them.
+  const double far = spec.region.far_cell_size > 0.0 ? spec.region.far_cell_size : 4.0 * cell;
+  std::vector<double> x_steps, y_steps;
+  const auto append = [](std::vector<double> &to, const std::vector<double> &steps) {
+    to.insert(to.end(), steps.begin(), steps.end());
+  };
+  // Uniform cells over the band and the core (each interval divided evenly, so that the band's
+  // and the core's edges lie on mesh lines), graded outside them.
+  const auto uniform = [&](std::vector<double> &to, const std::vector<double> &breakpoints) {
+    for (std::size_t k = 1; k < breakpoints.size(); ++k)
+      append(to, graded_steps(breakpoints[k - 1], breakpoints[k], cell, cell, false, false));
+  };
   if (box_.left_shared)
-    xs.insert(xs.end(), {cx0 - w, cx0});
-  xs.push_back(tank_x1);
+    {
+      append(x_steps, graded_steps(tank_x0, cx0 - w, cell, far, false, true));
+      uniform(x_steps, {cx0 - w, cx0, tank_x1});
+    }
+  else
+    uniform(x_steps, {tank_x0, tank_x1});
+  std::vector<double> core_lines;
   if (box_.bottom_shared)
-    ys.insert(ys.end(), {cy0 - w, cy0});
+    {
+      append(y_steps, graded_steps(tank_y0, cy0 - w, cell, far, false, true));
+      core_lines = {cy0 - w, cy0};
+    }
+  else
+    core_lines = {tank_y0};
   if (box_.top_shared)
-    ys.insert(ys.end(), {cy1, cy1 + w});
-  ys.push_back(tank_y1);
+    core_lines.insert(core_lines.end(), {cy1, cy1 + w});
+  else
+    core_lines.push_back(tank_y1);
+  uniform(y_steps, core_lines);
+  if (box_.top_shared)
+    append(y_steps, graded_steps(cy1 + w, tank_y1, cell, far, true, false));
   dealii::Triangulation<fem::dim> tank_mesh;
-  dealii::GridGenerator::subdivided_hyper_rectangle(tank_mesh, {mesh_steps(xs, cell), mesh_steps(ys, cell)},
+  dealii::GridGenerator::subdivided_hyper_rectangle(tank_mesh, {x_steps, y_steps},
                                                     dealii::Point<fem::dim>(tank_x0, tank_y0),
                                                     dealii::Point<fem::dim>(tank_x1, tank_y1), true);
   mesh_ = continuum_region_mesh(tank_mesh, *band_);

@@ -24,7 +24,9 @@
 // - The DEM core is the box less, on each shared side, a pad of one branch length (the longest
 //   contact between two bodies: the driven particles of coupled_stepper.h) and the band (width w).
 //   The continuum's mesh is the tank's with the core's cells removed (continuum_region.h); the
-//   core's and the band's edges lie on mesh lines. It starts at the geostatic stress of the whole
+//   core's and the band's edges lie on mesh lines, the cells are uniform over the band and the
+//   core's span and grow away from them (the continuum runs at the particles' step: its cells
+//   cost as much as the particles on a uniform mesh). It starts at the geostatic stress of the whole
 //   tank (sigma_v = gamma (fill - y), sigma_h = K0 sigma_v), u = 0, under gravity; the base is
 //   fixed, the back and front walls are smooth rollers, the top is free.
 // - The temporary walls are parked away, the coupling ties the particles to the continuum (the
@@ -59,7 +61,9 @@ struct HybridRegionSpec
   double margin = 0.1;           ///< from the sheet to the particle box's edge, below, above and behind it [m]
   double lift_thickness = 0.05;  ///< the box's lifts are at most this thick [m]
   double band_width = 0.0;       ///< w; 0 = four mean grain sizes [m]
-  double cell_size = 0.0;        ///< of the continuum's cells, at most; 0 = w / 2 [m]
+  double cell_size = 0.0;        ///< of the continuum's cells in the band and over the core's span; 0 = w / 2 [m]
+  /// The cells grow (by 1.3 per cell) away from the band up to this size; 0 = 4 x cell_size [m].
+  double far_cell_size = 0.0;
   CouplingMethod method = LagrangeMultiplierCoupling{};
   /// The band's particles lighter than this are driven by the continuum, not tied to it: the
   /// stable step then stays within about a third of the particles' own (OverlapBand::driven_from;
