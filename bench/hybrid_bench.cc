@@ -4,13 +4,15 @@
 // the table of bench/RESULTS.md.
 //
 //   hybrid_bench --mode dem|hybrid [--margin M] [--seed S] [--particles N] [--displacement D]
-//                [--rate R] [--threads T]
+//                [--rate R] [--threads T] [--young E]
 //
 // The tank: 0.8 m x 0.3 m, a simple run-out L = 0.5 m at H = 0.15 m, grains of about 4 mm
 // (N = 12,000 two-disc clusters for the whole tank), the soft contacts of the DEM pull-out tests,
-// GT230's interface; the hybrid's continuum linear elastic with the DEM soil's small-strain
-// modulus order (E = 5 MPa, nu = 0.3). Prints key=value lines: the wall times of the set-up (fill,
-// and for the hybrid the coupling and settling) and of the pull, T_max and where, the sizes.
+// GT230's interface; the hybrid's continuum linear elastic, E = 5 MPa (--young), nu = 0.3.
+// Prints key=value lines: the wall times of the set-up (fill, and for the hybrid the coupling and
+// settling) and of the pull, T_max and where, the sizes. Run it with OMP_WAIT_POLICY=PASSIVE on a
+// shared host: with 2 threads and the default (spinning) policy, a loaded host made the coupled
+// pull's many short parallel regions about 10 x slower (measured).
 #include "coupling/hybrid_pullout.h"
 #include "dem/pullout_tank.h"
 
@@ -74,7 +76,7 @@ int main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   std::string mode = "hybrid";
-  double margin = 0.05, displacement = 0.005, rate = 0.02;
+  double margin = 0.05, displacement = 0.005, rate = 0.02, young = 5e6;
   std::size_t particles = 12000;
   std::uint64_t seed = 1;
   int threads = 2;
@@ -95,6 +97,8 @@ int main(int argc, char **argv)
         rate = std::stod(value);
       else if (key == "--threads")
         threads = std::stoi(value);
+      else if (key == "--young")
+        young = std::stod(value);
       else
         {
           std::cerr << "hybrid_bench: unknown option " << key << "\n";
@@ -131,13 +135,13 @@ int main(int argc, char **argv)
   spec.region.margin = margin;
   spec.region.lift_thickness = 0.05;
   spec.continuum.soil.kind = fem::SoilModelKind::linear_elastic;
-  spec.continuum.soil.young_modulus = 5e6;
+  spec.continuum.soil.young_modulus = young;
   spec.continuum.soil.poisson_ratio = 0.3;
   coupling::HybridPullOut hybrid(spec, "hybrid_bench");
   const double setup = seconds_since(start);
   const coupling::HybridSetUp &s = hybrid.set_up();
   const coupling::ParticleBox &box = hybrid.box();
-  std::cout << "margin_m=" << margin << "\nn_particles=" << s.n_particles << "\nn_cells=" << s.n_cells
+  std::cout << "margin_m=" << margin << "\nyoung_Pa=" << young << "\nn_particles=" << s.n_particles << "\nn_cells=" << s.n_cells
             << "\nn_tied=" << s.n_tied << "\nn_driven=" << s.n_driven << "\nbox=" << box.x0 << "," << box.y0 << ","
             << box.x1 << "," << box.y1 << "\nband_width_m=" << s.band_width << "\nsettling_steps=" << s.settling_steps
             << "\ntime_step_s=" << s.time_step << "\nparticle_time_step_s=" << s.particle_time_step
