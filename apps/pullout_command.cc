@@ -9,7 +9,8 @@
 // level (on the grains of the lift below), so sigma_v < gamma H is expected.
 //
 // mode = dem is this file (below); mode = fem, the same test with a deal.II continuum for the
-// soil, is pullout_fem_mode.cc. Both read this input (declare_pullout_parameters, parse_pullout)
+// soil, is pullout_fem_mode.cc; mode = hybrid, particles round the sheet and the continuum
+// elsewhere, is pullout_hybrid_mode.cc. All read this input (declare_pullout_parameters, parse_pullout)
 // and write the same files through apps/pullout_output.h, plus parameters.prm and summary.json
 // (written last). In dem mode, also the soil's fields at 'Output/field outputs at'
 // (pullout_field_output.h): pullout_fields.h5/.xdmf, grain_displacements_u*mm.csv/.png,
@@ -24,6 +25,7 @@
 
 #include "contact_parameters.h"
 #include "pullout_fem_mode.h"
+#include "pullout_hybrid_mode.h"
 #include "pullout_field_output.h"
 #include "pullout_input.h"
 #include "pullout_output.h"
@@ -60,7 +62,8 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.declare_entry("output directory", "output/pullout", Patterns::Anything(),
                     "Directory for all results, created if needed, relative to the working directory");
   prm.declare_entry("threads", "2", Patterns::Integer(1, 256),
-                    "Number of OpenMP threads; dem mode only (fem mode runs on the MPI ranks of mpirun) [-]");
+                    "Number of OpenMP threads of the particles; dem and hybrid modes (fem mode runs on the MPI ranks "
+                    "of mpirun) [-]");
   prm.declare_entry("checkpoint interval", "300", Patterns::Double(0.0),
                     "dem mode: wall-clock time between checkpoints (OUTPUT/checkpoint.h5: the filled tank, the pull, "
                     "the rows recorded; one is also written when the tank is full); continue an interrupted run "
@@ -70,8 +73,10 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "(to split a long run into jobs, each continued with --resume); 0 = run to the end [-]");
   prm.declare_entry("mode", "dem", Patterns::Selection("dem|fem|hybrid"),
                     "Soil model: dem (discrete elements everywhere, subsections Filling and Soil/Particle contact); "
-                    "fem (a deal.II continuum, subsection Continuum); hybrid (DEM near the sheet, continuum "
-                    "elsewhere) is not available yet. Both modes write the same result files [-]");
+                    "fem (a deal.II continuum, subsection Continuum); hybrid (particles in a box round the sheet, "
+                    "the continuum elsewhere: the input of dem mode plus subsection Hybrid and the soil of "
+                    "subsection Continuum; no field outputs, no checkpoints). All modes write the same curve "
+                    "files [-]");
 
   prm.enter_subsection("Tank");
   prm.declare_entry("length", text(g.tank_length), Patterns::Double(1e-6),
@@ -177,6 +182,7 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.leave_subsection();
 
   declare_continuum_parameters(prm);
+  declare_hybrid_parameters(prm);
 }
 
 PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool dem_mode)
@@ -512,12 +518,15 @@ int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm com
     set_parameter(prm, path, value);
   const std::string where = "input file '" + input_file + "'";
   const std::string mode = prm.get("mode");
-  if (mode == "hybrid")
-    throw std::invalid_argument(where + ": 'mode' = hybrid is not yet available (the coupling is not written); use "
-                                "'set mode = dem' or 'set mode = fem'");
+  if (resume && mode == "hybrid")
+    throw std::invalid_argument(where + ": --resume is not available for 'mode' = hybrid (a coupled run writes no "
+                                "checkpoints yet): run it again without --resume");
   if (resume && mode != "dem")
     throw std::invalid_argument(where + ": --resume continues a run of 'mode' = dem only");
-  const PullOutInput in = parse_pullout(prm, where, mode == "dem");
+  // Hybrid mode fills its particle box from the whole tank's Filling: checked as in dem mode.
+  const PullOutInput in = parse_pullout(prm, where, mode != "fem");
+  if (mode == "hybrid")
+    return run_pullout_hybrid_mode(prm, in, where);
   return mode == "dem" ? run_pullout_dem_mode(prm, in, where, resume)
                        : run_pullout_fem_mode(prm, in, where, communicator);
 }
