@@ -33,7 +33,8 @@ void declare_hybrid_parameters(ParameterHandler &prm)
                     "and a pad of one branch length by a branch, and leave some continuum [m]");
   prm.declare_entry("lift thickness", number(region.lift_thickness), Patterns::Double(),
                     "hybrid mode: the particle box is filled in lifts at most this thick (its own lifts: 'Filling/"
-                    "number of layers' is then only checked for the whole tank, as in dem mode) [m]");
+                    "number of layers' is then only checked for the whole tank, as in dem mode); the fill refuses grains "
+                    "larger than a fifth of a lift, so thinner lifts need more particles [m]");
   prm.declare_entry("band width", number(region.band_width), Patterns::Double(),
                     "hybrid mode: width of the overlap band where the particles are tied to the continuum; 0 = "
                     "four mean grain diameters [m]");
