@@ -7,6 +7,7 @@
 //   geohybrid pullout FILE.prm             pull-out of a geosynthetic anchored in the INSA tank
 //   geohybrid pullout FILE.prm --seeds N   the same on N fills (seeds s, s+1, ...), averaged
 //   mpirun -np N geohybrid pullout FILE.prm  the same with 'mode = fem' on N MPI ranks
+//   ('mode = hybrid': particles round the sheet, the continuum elsewhere; one process)
 //   geohybrid coupling-test FILE.prm       the coupling's patch, wave and energy benchmarks for one method
 //   geohybrid compare DIR1 DIR2 ... [--output FILE.png]   pull-out curves of result directories in one PNG
 //   geohybrid COMMAND --print-parameters   every parameter of COMMAND with default, unit, doc
@@ -49,7 +50,7 @@ const std::map<std::string, Command> &commands()
                  geohybrid::apps::declare_biaxial_parameters, geohybrid::apps::run_biaxial_command}},
     {"calibrate", {"fit contact friction, kn and ks/kn to a target friction angle, E (and nu) by biaxial runs",
                    geohybrid::apps::declare_calibrate_parameters, geohybrid::apps::run_calibrate_command}},
-    {"pullout", {"pull-out test of a geosynthetic in the INSA tank: simple run-out or wrap-around (mode = dem or fem)",
+    {"pullout", {"pull-out test of a geosynthetic in the INSA tank: simple run-out or wrap-around (mode = dem, fem or hybrid)",
                  geohybrid::apps::declare_pullout_parameters,
                  [](const std::string &file, bool resume) { return geohybrid::apps::run_pullout_command(file, resume); }}},
     {"coupling-test", {"DEM-FEM coupling benchmarks for one method: ghost forces, reflected wave energy, energy drift",

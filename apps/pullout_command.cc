@@ -9,7 +9,8 @@
 // level (on the grains of the lift below), so sigma_v < gamma H is expected.
 //
 // mode = dem is this file (below); mode = fem, the same test with a deal.II continuum for the
-// soil, is pullout_fem_mode.cc. Both read this input (declare_pullout_parameters, parse_pullout)
+// soil, is pullout_fem_mode.cc; mode = hybrid, particles round the sheet and the continuum
+// elsewhere, is pullout_hybrid_mode.cc. All read this input (declare_pullout_parameters, parse_pullout)
 // and write the same files through apps/pullout_output.h, plus parameters.prm and summary.json
 // (written last). In dem mode, also the soil's fields at 'Output/field outputs at'
 // (pullout_field_output.h): pullout_fields.h5/.xdmf, grain_displacements_u*mm.csv/.png,
@@ -24,6 +25,7 @@
 
 #include "contact_parameters.h"
 #include "pullout_fem_mode.h"
+#include "pullout_hybrid_mode.h"
 #include "pullout_field_output.h"
 #include "pullout_input.h"
 #include "pullout_output.h"
@@ -60,9 +62,10 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.declare_entry("output directory", "output/pullout", Patterns::Anything(),
                     "Directory for all results, created if needed, relative to the working directory");
   prm.declare_entry("threads", "2", Patterns::Integer(1, 256),
-                    "Number of OpenMP threads; dem mode only (fem mode runs on the MPI ranks of mpirun) [-]");
+                    "Number of OpenMP threads of the particles; dem and hybrid modes (fem mode runs on the MPI ranks "
+                    "of mpirun) [-]");
   prm.declare_entry("checkpoint interval", "300", Patterns::Double(0.0),
-                    "dem mode: wall-clock time between checkpoints (OUTPUT/checkpoint.h5: the filled tank, the pull, "
+                    "dem mode only (hybrid mode writes none): wall-clock time between checkpoints (OUTPUT/checkpoint.h5: the filled tank, the pull, "
                     "the rows recorded; one is also written when the tank is full); continue an interrupted run "
                     "with 'geohybrid pullout FILE --resume'; 0 = never [s]");
   prm.declare_entry("stop after steps", "0", Patterns::Integer(0),
@@ -70,8 +73,10 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "(to split a long run into jobs, each continued with --resume); 0 = run to the end [-]");
   prm.declare_entry("mode", "dem", Patterns::Selection("dem|fem|hybrid"),
                     "Soil model: dem (discrete elements everywhere, subsections Filling and Soil/Particle contact); "
-                    "fem (a deal.II continuum, subsection Continuum); hybrid (DEM near the sheet, continuum "
-                    "elsewhere) is not available yet. Both modes write the same result files [-]");
+                    "fem (a deal.II continuum, subsection Continuum); hybrid (particles in a box round the sheet, "
+                    "the continuum elsewhere: the input of dem mode plus subsection Hybrid and the soil of "
+                    "subsection Continuum; no field outputs, no checkpoints). All modes write the same curve "
+                    "files [-]");
 
   prm.enter_subsection("Tank");
   prm.declare_entry("length", text(g.tank_length), Patterns::Double(1e-6),
@@ -80,10 +85,10 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.declare_entry("fill height", text(g.fill_height), Patterns::Double(1e-6),
                     "Height of the soil surface above the base (H plus the soil below the sheet) [m]");
   prm.declare_entry("wall friction angle", text(g.wall_friction_deg), Patterns::Double(0.0, 89.99),
-                    "Soil-wall friction angle (measured: 28 degrees, section 4.3); dem mode only (the continuum's "
+                    "Soil-wall friction angle (measured: 28 degrees, section 4.3); dem and hybrid modes (the continuum's "
                     "walls are smooth) [deg]");
   prm.declare_entry("clamp offset", text(g.clamp_offset), Patterns::Double(1e-6),
-                    "Distance of the clamp (the sheet's first node) outside the front wall; dem mode only (the "
+                    "Distance of the clamp (the sheet's first node) outside the front wall; dem and hybrid modes (the "
                     "continuum's clamp is the sheet's node at the front wall) [m]");
   prm.leave_subsection();
 
@@ -107,11 +112,11 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "b, width of the sheet in the bench, for the per-sheet outputs (INSA: 0.5 m) [m]");
   prm.declare_entry("axial stiffness", text(sheet.axial_stiffness), Patterns::Double(1e-6),
                     "J per metre of width (GT230: 2104 kN/m, GT75: 687 kN/m, Table 2) [N/m]");
-  prm.declare_entry("thickness", text(sheet.thickness), Patterns::Double(1e-9), "For contact (GT230: 3.2 mm); dem mode only (the continuum's sheet has no thickness) [m]");
+  prm.declare_entry("thickness", text(sheet.thickness), Patterns::Double(1e-9), "For contact (GT230: 3.2 mm); dem and hybrid modes (the continuum's sheet has no thickness) [m]");
   prm.declare_entry("areal mass", text(sheet.areal_mass), Patterns::Double(1e-9),
                     "Mass per unit area (GT230: 620 g/m2) [kg/m^2]");
   prm.declare_entry("segment length", "0.01", Patterns::Double(1e-6),
-                    "Longest spar element; dem mode only (fem: 'Continuum/sheet node spacing') [m]");
+                    "Longest spar element; dem and hybrid modes (fem: 'Continuum/sheet node spacing') [m]");
   prm.enter_subsection("Interface");
   declare_contact_parameters(prm, dem::default_interface_parameters());
   prm.leave_subsection();
@@ -120,7 +125,8 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.enter_subsection("Soil");
   prm.declare_entry("unit weight", "15.2e3", Patterns::Double(1e-6),
                     "gamma of the soil at the fill's porosity (sand 1: 15.2 kN/m3, Table 1); sets the grains' "
-                    "density gamma / (g (1 - n)) in dem mode, the continuum's density gamma / g in fem mode [N/m^3]");
+                    "density gamma / (g (1 - n)) in dem mode, the continuum's density gamma / g in fem mode, both in "
+                    "hybrid mode [N/m^3]");
   prm.enter_subsection("Particle contact");
   declare_contact_parameters(prm, dem::ContactParameters());
   prm.leave_subsection();
@@ -159,7 +165,7 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.declare_entry("sheet local damping", text(pull.sheet_local_damping), Patterns::Double(0.0, 0.99),
                     "Local damping of the sheet's nodes while pulling (the grains keep 'Filling/local damping'): "
                     "damping a sheet that slides one way through fluctuating contacts drags it whatever the rate, "
-                    "so 0 by default; dem mode only (fem: 'Continuum/local damping' acts on soil and sheet) [-]");
+                    "so 0 by default; dem and hybrid modes (fem: 'Continuum/local damping' acts on soil and sheet) [-]");
   prm.declare_entry("tension profiles at", "0.006, 0.06", Patterns::List(Patterns::Double(0.0)),
                     "Head displacements at which the tension along the sheet is written [m]");
   prm.leave_subsection();
@@ -170,13 +176,14 @@ void declare_pullout_parameters(ParameterHandler &prm)
   prm.declare_entry("field outputs at", "0.006, 0.06", Patterns::List(Patterns::Double(0.0), 0, 100),
                     "Head displacements at which the grains' displacements since the start of the pull, the "
                     "contact-force network, an HDF5/XDMF snapshot and the surface uplift are written (the "
-                    "paper's Figures 10-12); empty = none [m]");
+                    "paper's Figures 10-12); empty = none; dem mode only (hybrid mode writes none yet) [m]");
   prm.declare_entry("stress band", "0.05", Patterns::Double(1e-6),
                     "Height of the soil band above the sheet where the Love-Weber vertical stress is measured; dem "
-                    "mode only [m]");
+                    "and hybrid modes [m]");
   prm.leave_subsection();
 
   declare_continuum_parameters(prm);
+  declare_hybrid_parameters(prm);
 }
 
 PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool dem_mode)
@@ -512,12 +519,15 @@ int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm com
     set_parameter(prm, path, value);
   const std::string where = "input file '" + input_file + "'";
   const std::string mode = prm.get("mode");
-  if (mode == "hybrid")
-    throw std::invalid_argument(where + ": 'mode' = hybrid is not yet available (the coupling is not written); use "
-                                "'set mode = dem' or 'set mode = fem'");
+  if (resume && mode == "hybrid")
+    throw std::invalid_argument(where + ": --resume is not available for 'mode' = hybrid (a coupled run writes no "
+                                "checkpoints yet): run it again without --resume");
   if (resume && mode != "dem")
     throw std::invalid_argument(where + ": --resume continues a run of 'mode' = dem only");
-  const PullOutInput in = parse_pullout(prm, where, mode == "dem");
+  // Hybrid mode fills its particle box from the whole tank's Filling: checked as in dem mode.
+  const PullOutInput in = parse_pullout(prm, where, mode != "fem");
+  if (mode == "hybrid")
+    return run_pullout_hybrid_mode(prm, in, where);
   return mode == "dem" ? run_pullout_dem_mode(prm, in, where, resume)
                        : run_pullout_fem_mode(prm, in, where, communicator);
 }

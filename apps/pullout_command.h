@@ -3,7 +3,8 @@
 // (reference paper, sections 2.2 and 4.3): simple run-out or wrap-around, head tension against
 // head displacement. 'mode = dem' runs the discrete model (dem/pullout_tank.h), 'mode = fem' the
 // continuum (fem/pullout_problem.h, apps/pullout_fem_mode.h) from the same file, also under
-// mpirun; 'mode = hybrid' is not written yet.
+// mpirun; 'mode = hybrid' the two coupled (coupling/hybrid_pullout.h, apps/pullout_hybrid_mode.h),
+// in one process.
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpi.h>

@@ -30,7 +30,7 @@ void declare_continuum_parameters(ParameterHandler &prm)
                     "must be 'Tank/length' x 'Tank/fill height'. Empty: a generated rectangle of that size with "
                     "cells of 'cell size' [-]");
   prm.declare_entry("cell size", "0.025", Patterns::Double(1e-4, 1.0),
-                    "fem mode only, generated mesh: the cells' size; the sheet's lower part (and a wrap-around's "
+                    "fem mode only (hybrid: 'Hybrid/cell size'), generated mesh: the cells' size; the sheet's lower part (and a wrap-around's "
                     "return and upper part) runs through the middle of a row (column) of cells, so the interface "
                     "reads the soil's stress at the sheet's level [m]");
   prm.declare_entry("sheet node spacing", "0.0125", Patterns::Double(1e-4, 1.0),
@@ -56,25 +56,27 @@ void declare_continuum_parameters(ParameterHandler &prm)
   prm.declare_entry("element degree", "1", Patterns::Integer(1, 2),
                     "fem mode only: 1 (Q1, cheaper per step and per stable step) or 2 (Q2) [-]");
   prm.declare_entry("soil model", "Mohr-Coulomb", Patterns::Selection("linear elastic|Mohr-Coulomb|Drucker-Prager"),
-                    "fem mode only: the continuum's constitutive law (Drucker-Prager is matched to Mohr-Coulomb in "
+                    "fem and hybrid modes: the continuum's constitutive law (Drucker-Prager is matched to Mohr-Coulomb in "
                     "plane strain) [-]");
   prm.declare_entry("Young modulus", "20e6", Patterns::Double(1e3, 1e12),
-                    "fem mode only: E; sand 1: 20 MPa from the triaxial tests at 10-50 kPa (section 4.2) [Pa]");
+                    "fem and hybrid modes: E; sand 1: 20 MPa from the triaxial tests at 10-50 kPa (section 4.2) [Pa]");
   prm.declare_entry("Poisson ratio", "0.3", Patterns::Double(0.0, 0.49),
-                    "fem mode only: nu (not measured in the paper: 0.3, a usual value for sand) [-]");
+                    "fem and hybrid modes: nu (not measured in the paper: 0.3, a usual value for sand) [-]");
   prm.declare_entry("friction angle", "38.4", Patterns::Double(0.1, 89.9),
-                    "fem mode only: phi of the Mohr-Coulomb and Drucker-Prager soils; sand 1: 38.4 degrees "
+                    "fem and hybrid modes: phi of the Mohr-Coulomb and Drucker-Prager soils; sand 1: 38.4 degrees "
                     "(triaxial tests, section 4.2) [deg]");
-  prm.declare_entry("cohesion", "0", Patterns::Double(0.0, 1e9), "fem mode only: c; sand 1: none [Pa]");
+  prm.declare_entry("cohesion", "0", Patterns::Double(0.0, 1e9), "fem and hybrid modes: c; sand 1: none [Pa]");
   prm.declare_entry("dilatancy angle", "8.4", Patterns::Double(0.0, 89.9),
-                    "fem mode only: psi, at most phi; the paper gives none: 8.4 = phi - 30 degrees is Bolton's "
+                    "fem and hybrid modes: psi, at most phi; the paper gives none: 8.4 = phi - 30 degrees is Bolton's "
                     "(1986) estimate for a dense sand, a choice [deg]");
   prm.declare_entry("K0", "0", Patterns::Double(0.0, 10.0),
-                    "fem mode only: sigma_h / sigma_v of the geostatic state; 0 takes 1 - sin(phi) (Jaky) for the "
+                    "fem and hybrid modes: sigma_h / sigma_v of the geostatic state; 0 takes 1 - sin(phi) (Jaky) for the "
                     "plastic soils and nu / (1 - nu) for the elastic one [-]");
   prm.declare_entry("local damping", "0.3", Patterns::Double(0.0, 0.99),
-                    "fem mode only: local (Cundall) damping of soil and sheet; 0.3 rather than PFC's 0.7 because "
-                    "it drags the sliding sheet (fem/pullout_problem.h) [-]");
+                    "fem and hybrid modes: local (Cundall) damping of the continuum (fem: of soil and sheet; 0.3 "
+                    "rather than PFC's 0.7 because it drags the sliding sheet, fem/pullout_problem.h; hybrid: of the "
+                    "continuum only, the particles and the sheet keep 'Filling/local damping' and 'Pull/sheet local "
+                    "damping') [-]");
   prm.declare_entry("safety factor", "0.8", Patterns::Double(0.01, 1.0),
                     "fem mode only: the time step over the soil's critical step [-]");
   prm.declare_entry("interface cohesion", "0", Patterns::Double(0.0, 1e9),
@@ -92,6 +94,22 @@ void declare_continuum_parameters(ParameterHandler &prm)
                     "fem mode only: head displacement between VTU snapshots of the soil in OUTPUT/snapshots; "
                     "0 = none [m]");
   prm.leave_subsection();
+}
+
+ContinuumSoilInput parse_continuum_soil(ParameterHandler &prm)
+{
+  ContinuumSoilInput c;
+  prm.enter_subsection("Continuum");
+  c.soil.kind = fem::soil_model_kind_from_string(prm.get("soil model"));
+  c.soil.young_modulus = prm.get_double("Young modulus");
+  c.soil.poisson_ratio = prm.get_double("Poisson ratio");
+  c.soil.strength.friction_angle_deg = prm.get_double("friction angle");
+  c.soil.strength.cohesion = prm.get_double("cohesion");
+  c.soil.strength.dilatancy_angle_deg = prm.get_double("dilatancy angle");
+  c.k0 = prm.get_double("K0");
+  c.local_damping = prm.get_double("local damping");
+  prm.leave_subsection();
+  return c;
 }
 
 namespace
@@ -142,14 +160,6 @@ ContinuumInput parse_continuum(ParameterHandler &prm, const PullOutInput &in, co
   c.displacement_increment = prm.get_double("displacement increment");
   p.sheet_node_spacing = prm.get_double("sheet node spacing");
   p.element_degree = static_cast<unsigned int>(prm.get_integer("element degree"));
-  p.soil.kind = fem::soil_model_kind_from_string(prm.get("soil model"));
-  p.soil.young_modulus = prm.get_double("Young modulus");
-  p.soil.poisson_ratio = prm.get_double("Poisson ratio");
-  p.soil.strength.friction_angle_deg = prm.get_double("friction angle");
-  p.soil.strength.cohesion = prm.get_double("cohesion");
-  p.soil.strength.dilatancy_angle_deg = prm.get_double("dilatancy angle");
-  p.k0 = prm.get_double("K0");
-  p.local_damping = prm.get_double("local damping");
   p.safety_factor = prm.get_double("safety factor");
   p.sheet.interface.cohesion = prm.get_double("interface cohesion");
   p.sheet.interface.normal_stiffness = prm.get_double("interface normal stiffness");
@@ -157,6 +167,10 @@ ContinuumInput parse_continuum(ParameterHandler &prm, const PullOutInput &in, co
   const double scaling = prm.get_double("sheet mass scaling");
   c.snapshot_interval = prm.get_double("snapshot interval");
   prm.leave_subsection();
+  const ContinuumSoilInput soil = parse_continuum_soil(prm);
+  p.soil = soil.soil;
+  p.k0 = soil.k0;
+  p.local_damping = soil.local_damping;
   if (scaling != 0.0 && scaling < 1.0)
     throw std::invalid_argument(where + ": 'Continuum/sheet mass scaling' = " + number(scaling) +
                                 " must be 0 (automatic) or at least 1 [-]");

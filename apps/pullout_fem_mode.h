@@ -22,6 +22,8 @@
 // file, through the same PulloutOutput as the DEM mode.
 #include "apps/pullout_input.h"
 
+#include "fem/constitutive/soil_model.h"
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpi.h>
@@ -30,8 +32,19 @@
 
 namespace geohybrid::apps
 {
-/// Declares subsection Continuum (fem mode only), with the defaults for sand 1.
+/// Declares subsection Continuum (fem mode; its soil entries also hybrid mode), with the defaults
+/// for sand 1.
 void declare_continuum_parameters(dealii::ParameterHandler &prm);
+
+/// The continuum's soil as subsection Continuum gives it, the part fem and hybrid modes share.
+struct ContinuumSoilInput
+{
+  fem::SoilParameters soil; ///< 'soil model', E, nu, phi, c, psi
+  double k0 = 0.0;          ///< 'K0'; 0 = the soil's default [-]
+  double local_damping = 0.3; ///< 'local damping' [-]
+};
+/// Reads the soil entries of subsection Continuum (from the top level of `prm`).
+ContinuumSoilInput parse_continuum_soil(dealii::ParameterHandler &prm);
 
 /// Runs the continuum pull-out of `in` (parsed from `prm`, the file named by `where`) on the ranks
 /// of `communicator`. Collective; bad input throws std::invalid_argument naming the file and the

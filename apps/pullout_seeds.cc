@@ -60,7 +60,7 @@ int run_pullout_seeds(const std::string &input_file, int n_seeds)
   const std::string mode = prm.get("mode");
   // Bad input (geometry that does not fit the tank, a bad entry) is refused before the parent
   // directory is written, as a single run refuses it before its own.
-  parse_pullout(prm, input_file, mode == "dem");
+  parse_pullout(prm, input_file, mode != "fem");
   const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
   write_resolved_parameters(prm, out);
 

@@ -179,6 +179,17 @@ void Summary::set(const std::string &key, double value)
   entries_[key] = s.str();
 }
 
+void Summary::set(const std::string &key, const std::vector<double> &values)
+{
+  std::string literal = "[";
+  for (std::size_t k = 0; k < values.size(); ++k)
+    {
+      set(key, values[k]); // one number as set() writes it (null if not finite)
+      literal += (k > 0 ? ", " : "") + entries_[key];
+    }
+  entries_[key] = literal + "]";
+}
+
 void Summary::set(const std::string &key, const std::string &value)
 {
   std::string escaped = "\"";

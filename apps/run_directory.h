@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace dealii
 {
@@ -61,12 +62,15 @@ private:
   bool enabled_;
 };
 
-/// A flat JSON object of numbers and strings, written through a temporary file and a rename.
+/// A flat JSON object of numbers, strings and arrays of numbers (each on one line, so that a
+/// line-wise reader such as `geohybrid compare` still finds the other keys), written through a
+/// temporary file and a rename.
 class Summary
 {
 public:
   void set(const std::string &key, double value);
   void set(const std::string &key, const std::string &value);
+  void set(const std::string &key, const std::vector<double> &values);
   void write(const std::filesystem::path &file) const;
 
 private:

@@ -1,0 +1,229 @@
+#include "pullout_hybrid_mode.h"
+
+#include "apps/pullout_fem_mode.h"
+#include "apps/pullout_output.h"
+#include "apps/run_directory.h"
+
+#include "coupling/hybrid_pullout.h"
+#include "dem/conventions.h"
+#include "dem/measurements.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <optional>
+
+namespace geohybrid::apps
+{
+using dealii::ParameterHandler;
+namespace Patterns = dealii::Patterns;
+
+void declare_hybrid_parameters(ParameterHandler &prm)
+{
+  const coupling::HybridRegionSpec region;
+  const coupling::PenaltyCoupling penalty;
+  prm.enter_subsection("Hybrid");
+  // Any number passes the patterns: the library refuses the bad ones naming the entry and the
+  // input file (a pattern error would name only deal.II's pattern).
+  prm.declare_entry("DEM region margin", number(region.margin), Patterns::Double(),
+                    "hybrid mode: the particle box reaches this far beyond the sheet below it, above it (above a "
+                    "wrap-around's upper part) and behind its far end, clipped to the tank; it must exceed the band "
+                    "and a pad of one branch length by a branch, and leave some continuum [m]");
+  prm.declare_entry("lift thickness", number(region.lift_thickness), Patterns::Double(),
+                    "hybrid mode: the particle box is filled in lifts at most this thick (its own lifts: 'Filling/"
+                    "number of layers' is then only checked for the whole tank, as in dem mode); the fill refuses grains "
+                    "larger than a fifth of a lift, so thinner lifts need more particles [m]");
+  prm.declare_entry("band width", number(region.band_width), Patterns::Double(),
+                    "hybrid mode: width of the overlap band where the particles are tied to the continuum; 0 = "
+                    "four mean grain diameters [m]");
+  prm.declare_entry("cell size", number(region.cell_size), Patterns::Double(),
+                    "hybrid mode: the continuum's cells are at most this size (Q1, a generated mesh of the tank "
+                    "less the DEM core; 'Continuum/cell size' is fem mode's); 0 = half the band width [m]");
+  prm.declare_entry("coupling method", "multipliers", Patterns::Selection("multipliers|penalty"),
+                    "hybrid mode: how the band's particles follow the continuum: multipliers (bridging domain, "
+                    "Lagrange multipliers: their velocities equal the continuum's, exactly) or penalty (springs of "
+                    "'penalty factor' x E x d / w); the non-overlapping interface has no band and is not available "
+                    "for the pull-out [-]");
+  prm.declare_entry("penalty factor", number(penalty.penalty_factor), Patterns::Double(),
+                    "hybrid mode, coupling method = penalty: k_p / (E d / w), E 'Continuum/Young modulus', d the "
+                    "particle's diameter, w the band width; stiffer ties better and lowers the stable step [-]");
+  prm.declare_entry("driven below weight", number(region.driven_below_weight), Patterns::Double(),
+                    "hybrid mode: the band's particles whose energy weight (1 at the core's edge, 0 at the "
+                    "continuum's) is below this are moved by the continuum instead of tied to it, which keeps the "
+                    "coupled step near the particles' own; in [0, 1) [-]");
+  prm.leave_subsection();
+}
+
+namespace
+{
+/// subsection Hybrid and the soil of subsection Continuum, with the shared input, as the
+/// library's spec; checked (std::invalid_argument naming `where` and the entry).
+coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInput &in, const std::string &where)
+{
+  coupling::HybridPullOutSpec spec;
+  spec.tank = in.tank;
+  coupling::HybridRegionSpec &r = spec.region;
+  prm.enter_subsection("Hybrid");
+  r.margin = prm.get_double("DEM region margin");
+  r.lift_thickness = prm.get_double("lift thickness");
+  r.band_width = prm.get_double("band width");
+  r.cell_size = prm.get_double("cell size");
+  const double penalty_factor = prm.get_double("penalty factor");
+  if (prm.get("coupling method") == "penalty")
+    {
+      // PenaltyCoupling::validate knows no input file: checked here to name it.
+      if (!(penalty_factor > 0.0) || !(penalty_factor < 1e12))
+        throw std::invalid_argument(where + ": parameter 'Hybrid/penalty factor' = " + number(penalty_factor) +
+                                    " must be positive and finite [-]");
+      r.method = coupling::PenaltyCoupling{penalty_factor};
+    }
+  else
+    r.method = coupling::LagrangeMultiplierCoupling{};
+  r.driven_below_weight = prm.get_double("driven below weight");
+  prm.leave_subsection();
+
+  const ContinuumSoilInput soil = parse_continuum_soil(prm);
+  spec.continuum.soil = soil.soil;
+  spec.continuum.k0 = soil.k0;
+  spec.continuum.local_damping = soil.local_damping;
+  spec.validate(where);
+  return spec;
+}
+
+std::string method_name(const coupling::CouplingMethod &method)
+{
+  return std::holds_alternative<coupling::PenaltyCoupling>(method) ? "penalty" : "multipliers";
+}
+} // namespace
+
+int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where)
+{
+  if (dealii::Utilities::MPI::job_supports_mpi() && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    throw std::invalid_argument(where + ": 'mode' = hybrid runs in one process; run it without mpirun");
+  const auto start_time = std::chrono::steady_clock::now();
+  const auto seconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+  };
+  const dem::PullOutGeometry &g = in.tank.geometry;
+  const coupling::HybridPullOutSpec spec = parse_hybrid(prm, in, where);
+  // The box is computed (and the margin checked) before a file is written; the refusals that need
+  // the filled grains (the band against the sheet) come after the fill, with no summary.json.
+  const coupling::ParticleBox box = coupling::particle_box(spec, where);
+  const std::string out_name = prm.get("output directory");
+  if (out_name.empty())
+    throw std::invalid_argument(where + ": parameter 'output directory' is empty");
+
+  const std::filesystem::path out = prepare_output_directory(out_name);
+  write_resolved_parameters(prm, out);
+  std::cout << "geohybrid pullout: " << anchorage_name(g) << ", H = " << number(g.cover, 4) << " m, L = "
+            << number(g.anchorage_length, 4) << " m"
+            << (g.anchorage == dem::Anchorage::wrap_around
+                  ? ", D1 = " + number(g.return_height, 4) + " m, B = " + number(g.upper_length, 4) + " m"
+                  : std::string())
+            << "; mode hybrid: " << box.n_particles << " particles in the box [" << number(box.x0, 4) << ", "
+            << number(box.x1, 4) << "] x [" << number(box.y0, 4) << ", " << number(box.y1, 4) << "] m ("
+            << in.tank.filling.n_particles << " for the whole tank), " << fem::to_string(spec.continuum.soil.kind)
+            << " continuum, coupling " << method_name(spec.region.method) << std::endl;
+
+  // 1. The box filled, the continuum built and tied, both settled (the library's constructor).
+  double fill_time = 0.0;
+  std::optional<coupling::HybridPullOut> hybrid;
+  {
+    ProgressReport fill_progress("filling the particle box", 1.0);
+    hybrid.emplace(spec, where, [&](double f) {
+      fill_progress.update(f);
+      fill_time = seconds(); // the last report is the end of the fill; the settling follows
+    });
+    fill_progress.finish();
+  }
+  const double set_up_time = seconds();
+  const coupling::HybridSetUp &s = hybrid->set_up();
+  const dem::PullOutTank &tank = hybrid->particles();
+  const double sheet_level = box.y0 + tank.sheet_level; // in the tank's frame
+  const double actual_cover = g.fill_height - sheet_level;
+  const double gamma_H = in.tank.unit_weight * actual_cover;
+  const dem::SheetLevelStress before =
+    dem::measure_sheet_level_stress(hybrid->particle_system(), tank, box.box_tank.geometry, in.stress_band);
+  const double mu = std::tan(dem::degrees_to_radians(in.tank.sheet.interface.friction_angle_deg));
+  std::cout << "pullout: box filled in " << number(fill_time, 4) << " s (" << s.n_particles << " particles, "
+            << s.fill_steps << " steps); " << s.n_cells << " continuum cells of " << number(s.cell_size, 3)
+            << " m, band " << number(s.band_width, 3) << " m (" << s.n_tied << " particles tied, " << s.n_driven
+            << " driven); settled together in " << s.settling_steps << " steps (unbalanced ratio "
+            << number(s.settled_unbalanced_ratio, 3) << "), set-up " << number(set_up_time, 4)
+            << " s; time step " << number(s.time_step, 4) << " s (the particles' own " << number(s.particle_time_step, 4)
+            << " s); sheet at y = " << number(sheet_level, 4) << " m (H = " << number(actual_cover, 4)
+            << " m as laid); vertical stress at the sheet: top face " << number(before.top_face / 1e3, 4)
+            << " kPa, Love-Weber above " << number(before.love_weber_above / 1e3, 4) << " kPa, gamma H "
+            << number(gamma_H / 1e3, 4) << " kPa" << std::endl;
+
+  // 2. The pull: each point of the curve with the sheet as it is then (positions in the tank's
+  // frame; the box's frame is shifted by (x0, y0)).
+  PulloutOutput output(out, g.sheet_width, in.profiles_at);
+  const std::size_t middle = (tank.first_node_inside + tank.lower_part_end) / 2;
+  ProgressReport progress("pulling", in.pull.final_displacement);
+  std::size_t n_points = 0;
+  hybrid->pull(in.pull, [&](const dem::PullPoint &p) {
+    const dem::SparSheet &sheet = hybrid->particle_system().sheets()[0];
+    const auto moved = [&](std::size_t k) { return sheet.x[k] - tank.initial_nodes[k].x(); };
+    output.add_point(p.head_displacement, p.head_tension,
+                     {{moved(tank.first_node_inside), moved(middle), moved(tank.lower_part_end)}});
+    if (output.profile_due(p.head_displacement))
+      {
+        std::vector<SheetTensionRow> rows;
+        for (std::size_t k = 0; k < sheet.n_segments(); ++k)
+          rows.push_back({k, 0.5 * (tank.arc_length[k] + tank.arc_length[k + 1]),
+                          box.x0 + 0.5 * (sheet.x[k] + sheet.x[k + 1]), box.y0 + 0.5 * (sheet.y[k] + sheet.y[k + 1]),
+                          sheet.tension[k]});
+        output.add_profile(p.head_displacement, rows);
+      }
+    progress.update(p.head_displacement);
+    ++n_points;
+  });
+  progress.finish();
+
+  // 3. The plot, then summary.json last.
+  output.finish("hybrid DEM-FEM", in.experimental_T_max, in.pull.final_displacement);
+  const double T_max = output.max_head_tension(), wall_time = seconds();
+  Summary summary;
+  output.fill_summary(summary, "hybrid", anchorage_name(g), in.experimental_T_max);
+  summary.set("n_particles", static_cast<double>(s.n_particles));
+  summary.set("n_particles_full_tank", static_cast<double>(in.tank.filling.n_particles));
+  summary.set("coupling_method", method_name(spec.region.method));
+  summary.set("n_cells", static_cast<double>(s.n_cells));
+  summary.set("cell_size_m", s.cell_size);
+  summary.set("band_width_m", s.band_width);
+  summary.set("pad_m", s.pad);
+  summary.set("DEM_region", std::vector<double>{box.x0, box.y0, box.x1, box.y1});
+  summary.set("n_tied_particles", static_cast<double>(s.n_tied));
+  summary.set("n_driven_particles", static_cast<double>(s.n_driven));
+  summary.set("soil_model", fem::to_string(spec.continuum.soil.kind));
+  summary.set("n_sheet_nodes", static_cast<double>(hybrid->particle_system().sheets()[0].n_nodes()));
+  summary.set("sheet_level_m", sheet_level);
+  summary.set("H_as_laid_m", actual_cover);
+  summary.set("gamma_H_Pa", gamma_H);
+  summary.set("sigma_v_top_face_Pa", before.top_face);
+  summary.set("sigma_v_bottom_face_Pa", before.bottom_face);
+  summary.set("sigma_v_love_weber_above_Pa", before.love_weber_above);
+  summary.set("sigma_v_over_gamma_H", before.top_face / gamma_H);
+  summary.set("one_face_friction_kN_per_m", before.top_face * g.anchorage_length * mu / 1e3);
+  summary.set("time_step_s", s.time_step);
+  summary.set("particle_time_step_s", s.particle_time_step);
+  summary.set("n_fill_steps", static_cast<double>(s.fill_steps));
+  summary.set("n_settling_steps", static_cast<double>(s.settling_steps));
+  summary.set("settled_unbalanced_ratio", s.settled_unbalanced_ratio);
+  summary.set("n_curve_points", static_cast<double>(n_points));
+  summary.set("fill_wall_time_s", fill_time);
+  summary.set("set_up_wall_time_s", set_up_time);
+  summary.set("wall_time_s", wall_time);
+  summary.write(out / "summary.json");
+  std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m ("
+            << number(T_max * g.sheet_width / 1e3, 4) << " kN for b = " << number(g.sheet_width, 3) << " m) at "
+            << number(1e3 * output.head_displacement_at_max(), 3) << " mm"
+            << (in.experimental_T_max ? "; experiment " + number(*in.experimental_T_max / 1e3, 4) + " kN/m"
+                                      : std::string())
+            << "; " << number(wall_time, 4) << " s\nresults in " << out.string() << '\n';
+  return 0;
+}
+} // namespace geohybrid::apps

@@ -1,0 +1,154 @@
+// `geohybrid pullout` with 'mode = hybrid' end to end on the small tank of
+// test_coupling_hybrid_pullout.cc (0.4 m x 0.2 m, 4,000 grains for the whole tank, about 1,500 in
+// the box, an elastic continuum elsewhere), pulled 1 mm: the output contract (dem mode's curve
+// files, summary.json with the hybrid's keys), and bad input refused by name before summary.json.
+#include "apps/pullout_command.h"
+#include "text_file.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using geohybrid::testing::lines_of;
+
+namespace
+{
+fs::path test_directory()
+{
+  const fs::path d = fs::temp_directory_path() / ("geohybrid_test_app_pullout_hybrid_" +
+                                                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+/// The library test's tank and grains (soft contacts, kn = 1e7 N/m/m), the sheet 0.25 m long
+/// under 0.1 m, a 0.05 m margin; the continuum linear elastic (E = 5 MPa, nu = 0.3) with the
+/// library's damping (0.7); pulled 1 mm at 5 mm/s, a point every 0.2 mm.
+std::string write_input(const fs::path &directory, const std::string &extra)
+{
+  const fs::path file = directory / "pullout.prm";
+  std::ofstream(file) << "set output directory = " << (directory / "out").string() << "\n"
+                      << "set threads = 1\nset mode = hybrid\n"
+                      << "subsection Tank\n  set length = 0.4\n  set fill height = 0.2\n  set clamp offset = 0.01\nend\n"
+                      << "subsection Anchorage\n  set H = 0.1\n  set L = 0.25\nend\n"
+                      << "subsection Sheet\n  set segment length = 0.01\n  subsection Interface\n"
+                      << "    set normal stiffness = 1e7\n    set shear stiffness = 5e6\n  end\nend\n"
+                      << "subsection Soil\n  subsection Particle contact\n    set normal stiffness = 1e7\n"
+                      << "    set shear stiffness = 5e6\n  end\nend\n"
+                      << "subsection Filling\n  set number of particles = 4000\n  set number of layers = 2\n"
+                      << "  set size ratio = 0.8\n  set target porosity = 0.25\n  set growth stress = 5e3\n"
+                      << "  set equilibrium unbalanced ratio = 1e-3\n  set seed = 3\nend\n"
+                      << "subsection Pull\n  set rate = 0.005\n  set final displacement = 0.001\n"
+                      << "  set record interval = 0.0002\n  set tension profiles at = 0.0005, 0.001\nend\n"
+                      << "subsection Output\n  set experimental T_max = 0.5\nend\n"
+                      << "subsection Continuum\n  set soil model = linear elastic\n  set Young modulus = 5e6\n"
+                      << "  set Poisson ratio = 0.3\n  set local damping = 0.7\nend\n"
+                      << "subsection Hybrid\n  set DEM region margin = 0.05\n  set lift thickness = 0.05\nend\n"
+                      << extra;
+  return file.string();
+}
+
+std::string error_of(const std::string &file, bool resume = false)
+{
+  try
+    {
+      geohybrid::apps::run_pullout_command(file, resume);
+    }
+  catch (const std::exception &e)
+    {
+      return e.what();
+    }
+  return "";
+}
+
+/// The number a flat summary.json gives `key` (NaN if it has none).
+double summary_number(const std::string &json, const std::string &key)
+{
+  const auto at = json.find("\"" + key + "\": ");
+  if (at == std::string::npos)
+    return std::nan("");
+  return std::stod(json.substr(at + key.size() + 4));
+}
+} // namespace
+
+// About 40 s of CPU: the fill of the box, the coupled settling, 1 mm of pull.
+TEST(PullOutHybridMode, WritesTheContractWithTheHybridKeys)
+{
+  const fs::path d = test_directory();
+  ASSERT_EQ(error_of(write_input(d, "")), "");
+  const fs::path out = d / "out";
+  const std::vector<std::string> curve = lines_of(out / "pullout_curve.csv");
+  ASSERT_EQ(curve.size(), 1u + 6u); // header, the start and five intervals of 0.2 mm
+  EXPECT_EQ(curve[0], "head_displacement_m,head_tension_kN_per_m");
+  EXPECT_EQ(lines_of(out / "pullout_curve_sheet.csv").size(), curve.size());
+  const std::vector<std::string> moves = lines_of(out / "sheet_displacements.csv");
+  ASSERT_EQ(moves.size(), curve.size());
+  EXPECT_EQ(moves[0], "head_displacement_m,beginning_displacement_m,middle_displacement_m,end_displacement_m");
+  const std::vector<std::string> profiles = lines_of(out / "sheet_tension.csv");
+  EXPECT_GT(profiles.size(), 2u * 25u); // two profiles of a row per segment (0.25 m of 1 cm segments)
+  EXPECT_TRUE(fs::exists(out / "pullout_curve.png"));
+  EXPECT_TRUE(fs::exists(out / "parameters.prm"));
+
+  std::stringstream text;
+  text << std::ifstream(out / "summary.json").rdbuf();
+  const std::string summary = text.str();
+  EXPECT_NE(summary.find("\"mode\": \"hybrid\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"coupling_method\": \"multipliers\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"DEM_region\": ["), std::string::npos) << summary;
+  // The box [0.1, 0.4] x [0.05, 0.15] m of the 0.4 m x 0.2 m tank: 3/8 of 4,000 grains.
+  EXPECT_NEAR(summary_number(summary, "n_particles"), 1500.0, 100.0) << summary;
+  EXPECT_EQ(summary_number(summary, "n_particles_full_tank"), 4000.0);
+  EXPECT_GT(summary_number(summary, "n_cells"), 0.0);
+  EXPECT_GT(summary_number(summary, "band_width_m"), 0.0);
+  EXPECT_LT(summary_number(summary, "band_width_m"), 0.05);
+  EXPECT_GT(summary_number(summary, "T_max_kN_per_m"), 0.0);
+  const double dt = summary_number(summary, "time_step_s"), dt_particles = summary_number(summary, "particle_time_step_s");
+  EXPECT_GT(dt, 0.0);
+  EXPECT_LE(dt, dt_particles * (1.0 + 1e-12));
+  EXPECT_GT(summary_number(summary, "n_settling_steps"), 0.0);
+  EXPECT_GT(summary_number(summary, "fill_wall_time_s"), 0.0);
+  EXPECT_GE(summary_number(summary, "wall_time_s"), summary_number(summary, "fill_wall_time_s"));
+  for (const char *key : {"experimental_T_max_kN_per_m", "T_max_difference_percent", "gamma_H_Pa",
+                          "sigma_v_top_face_Pa", "n_sheet_nodes"})
+    EXPECT_NE(summary.find(std::string("\"") + key + "\""), std::string::npos) << key;
+  fs::remove_all(d);
+}
+
+// Refused before the fill, naming the entry and the file, with no summary.json.
+TEST(PullOutHybridMode, BadInputNamesTheEntryAndTheFile)
+{
+  const fs::path d = test_directory();
+  struct Case
+  {
+    std::string extra, expected;
+  };
+  for (const Case &c : {Case{"subsection Hybrid\n  set coupling method = interface\nend\n", "coupling method"},
+                        Case{"subsection Hybrid\n  set coupling method = magic\nend\n", "coupling method"},
+                        Case{"subsection Hybrid\n  set DEM region margin = -0.05\nend\n", "Hybrid/DEM region margin"},
+                        Case{"subsection Hybrid\n  set DEM region margin = 1\nend\n", "Hybrid/DEM region margin"},
+                        Case{"subsection Hybrid\n  set coupling method = penalty\n  set penalty factor = 0\nend\n",
+                             "Hybrid/penalty factor"},
+                        Case{"subsection Hybrid\n  set driven below weight = 1\nend\n", "Hybrid/driven below weight"}})
+    {
+      const std::string file = write_input(d, c.extra);
+      const std::string error = error_of(file);
+      EXPECT_NE(error.find(c.expected), std::string::npos) << c.extra << " -> " << error;
+      EXPECT_NE(error.find(file), std::string::npos) << c.extra << " -> " << error;
+      EXPECT_FALSE(fs::exists(d / "out" / "summary.json")) << c.extra;
+    }
+  // No checkpoints of a coupled run: --resume is refused, saying why.
+  const std::string file = write_input(d, "");
+  const std::string error = error_of(file, true);
+  EXPECT_NE(error.find("--resume"), std::string::npos) << error;
+  EXPECT_NE(error.find("hybrid"), std::string::npos) << error;
+  EXPECT_NE(error.find(file), std::string::npos) << error;
+  EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
+  fs::remove_all(d);
+}
