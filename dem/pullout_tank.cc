@@ -318,30 +318,30 @@ PullOut::PullOut(DemSystem &system, const PullSpec &spec, std::function<void()> 
 {
   if (!advance_)
     throw std::invalid_argument("pull-out: the function that advances the system is empty");
-  check_pull_spec(spec);
-  ramp_time_ = 2.0 * spec.ramp_displacement / spec.rate;
-  SparSheet &sheet = system.sheets().at(0);
-  progress_.clamp_x0 = sheet.x[0];
-  progress_.time0 = system.time();
-  progress_.next_record = spec.record_interval;
-  sheet.prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
-  system.set_sheet_local_damping(spec.sheet_local_damping);
-  last_point_.head_tension = head_tension(system);
+  start();
 }
 
 PullOut::PullOut(DemSystem &system, const PullSpec &spec) : system_(system), spec_(spec)
 {
-  check_pull_spec(spec);
+  start();
+}
+
+void PullOut::start()
+{
+  check_pull_spec(spec_);
   // Constant acceleration over the ramp: it covers ramp_displacement in 2 ramp_displacement / rate.
-  ramp_time_ = 2.0 * spec.ramp_displacement / spec.rate;
-  SparSheet &sheet = system.sheets().at(0);
+  ramp_time_ = 2.0 * spec_.ramp_displacement / spec_.rate;
+  SparSheet &sheet = system_.sheets().at(0);
   progress_.clamp_x0 = sheet.x[0];
-  progress_.time0 = system.time();
-  progress_.next_record = spec.record_interval;
+  progress_.time0 = system_.time();
+  progress_.next_record = spec_.record_interval;
   sheet.prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
-  system.set_sheet_local_damping(spec.sheet_local_damping);
-  system.initialise_forces();
-  last_point_.head_tension = head_tension(system);
+  system_.set_sheet_local_damping(spec_.sheet_local_damping);
+  // A system stepped by someone else keeps its forces current (a coupled stepper's include the
+  // coupling's, which a new evaluation would apply twice).
+  if (!advance_)
+    system_.initialise_forces();
+  last_point_.head_tension = head_tension(system_);
 }
 
 PullOut::PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &progress)

@@ -227,6 +227,8 @@ public:
 
 private:
   double clamp_speed() const;
+  /// What both new pulls do: the clamp's start, its first speed, the sheet's damping.
+  void start();
 
   DemSystem &system_;
   PullSpec spec_;
