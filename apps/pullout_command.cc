@@ -186,6 +186,14 @@ void declare_pullout_parameters(ParameterHandler &prm)
   declare_hybrid_parameters(prm);
 }
 
+std::string anchorage_description(const dem::PullOutGeometry &g)
+{
+  std::string text = anchorage_name(g) + ", H = " + number(g.cover, 4) + " m, L = " + number(g.anchorage_length, 4) + " m";
+  if (g.anchorage == dem::Anchorage::wrap_around)
+    text += ", D1 = " + number(g.return_height, 4) + " m, B = " + number(g.upper_length, 4) + " m";
+  return text;
+}
+
 PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool dem_mode)
 {
   PullOutInput in;
@@ -303,12 +311,8 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   const auto seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   };
-  std::cout << "geohybrid pullout: " << (g.anchorage == dem::Anchorage::wrap_around ? "wrap-around" : "simple run-out")
-            << ", H = " << number(g.cover, 4) << " m, L = " << number(g.anchorage_length, 4) << " m"
-            << (g.anchorage == dem::Anchorage::wrap_around
-                  ? ", D1 = " + number(g.return_height, 4) + " m, B = " + number(g.upper_length, 4) + " m"
-                  : std::string())
-            << "; " << in.tank.filling.n_particles << " particles, mode dem" << std::endl;
+  std::cout << "geohybrid pullout: " << anchorage_description(g) << "; " << in.tank.filling.n_particles
+            << " particles, mode dem" << std::endl;
 
   // 1. The tank, filled in layers, the sheet laid at its depth; or the one of the checkpoint.
   // `saved` holds what a checkpoint keeps beside the system: the tank's description, the
@@ -382,7 +386,6 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
     output.emplace(out, g.sheet_width, in.profiles_at, saved);
   else
     output.emplace(out, g.sheet_width, in.profiles_at);
-  const std::size_t middle = (tank.first_node_inside + tank.lower_part_end) / 2;
   const dem::ParticleSet &grains = system.particles();
   // Surface strips two disc diameters wide: a cluster's centre lies between its discs, so strips
   // one disc wide may hold no centre of a surface grain.
@@ -406,18 +409,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
             << " s); the pull takes " << pull->expected_steps() << " steps" << std::endl;
   ProgressReport progress("pulling", in.pull.final_displacement - u_first);
   const auto record = [&](const dem::PullPoint &p, const dem::DemSystem &s) {
-    const dem::SparSheet &sheet = s.sheets()[0];
-    const auto moved = [&](std::size_t k) { return sheet.x[k] - tank.initial_nodes[k].x(); };
-    output->add_point(p.head_displacement, p.head_tension,
-                      {{moved(tank.first_node_inside), moved(middle), moved(tank.lower_part_end)}});
-    if (output->profile_due(p.head_displacement))
-      {
-        std::vector<SheetTensionRow> rows;
-        for (std::size_t k = 0; k < sheet.n_segments(); ++k)
-          rows.push_back({k, 0.5 * (tank.arc_length[k] + tank.arc_length[k + 1]), 0.5 * (sheet.x[k] + sheet.x[k + 1]),
-                          0.5 * (sheet.y[k] + sheet.y[k + 1]), sheet.tension[k]});
-        output->add_profile(p.head_displacement, rows);
-      }
+    add_dem_sheet_point(*output, tank, s.sheets()[0], p);
     fields->record(p.head_displacement, s);
     progress.update(p.head_displacement - u_first);
   };
@@ -474,15 +466,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   Summary summary;
   output->fill_summary(summary, "dem", anchorage_name(g), in.experimental_T_max);
   summary.set("n_particles", static_cast<double>(system.particles().n_bodies()));
-  summary.set("n_sheet_nodes", static_cast<double>(system.sheets()[0].n_nodes()));
-  summary.set("sheet_level_m", tank.sheet_level);
-  summary.set("H_as_laid_m", actual_cover);
-  summary.set("gamma_H_Pa", gamma_H);
-  summary.set("sigma_v_top_face_Pa", before.top_face);
-  summary.set("sigma_v_bottom_face_Pa", before.bottom_face);
-  summary.set("sigma_v_love_weber_above_Pa", before.love_weber_above);
-  summary.set("sigma_v_over_gamma_H", before.top_face / gamma_H);
-  summary.set("one_face_friction_kN_per_m", one_face / 1e3);
+  set_dem_sheet_summary(summary, system.sheets()[0], tank.sheet_level, actual_cover, gamma_H, before, one_face);
   summary.set("time_step_s", system.time_step());
   summary.set("critical_time_step_s", system.critical_time_step());
   summary.set("n_pull_steps", static_cast<double>(pull->progress().n_steps));

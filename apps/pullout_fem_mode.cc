@@ -290,8 +290,7 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(comm);
   if (writer)
     {
-      std::cout << "geohybrid pullout: " << anchorage_name(g) << ", H = " << number(g.cover, 4) << " m, L = "
-                << number(g.anchorage_length, 4) << " m; mode fem: " << mesh.n_global_active_cells() << " Q"
+      std::cout << "geohybrid pullout: " << anchorage_description(g) << "; mode fem: " << mesh.n_global_active_cells() << " Q"
                 << c.problem.element_degree << " cells (" << (c.mesh_file.empty() ? "generated" : c.mesh_file)
                 << "), " << fem::to_string(c.problem.soil.kind) << " soil, ";
       if (c.implicit_solver)

@@ -70,15 +70,8 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
   r.lift_thickness = prm.get_double("lift thickness");
   r.band_width = prm.get_double("band width");
   r.cell_size = prm.get_double("cell size");
-  const double penalty_factor = prm.get_double("penalty factor");
   if (prm.get("coupling method") == "penalty")
-    {
-      // PenaltyCoupling::validate knows no input file: checked here to name it.
-      if (!(penalty_factor > 0.0) || !(penalty_factor < 1e12))
-        throw std::invalid_argument(where + ": parameter 'Hybrid/penalty factor' = " + number(penalty_factor) +
-                                    " must be positive and finite [-]");
-      r.method = coupling::PenaltyCoupling{penalty_factor};
-    }
+    r.method = coupling::PenaltyCoupling{prm.get_double("penalty factor")};
   else
     r.method = coupling::LagrangeMultiplierCoupling{};
   r.driven_below_weight = prm.get_double("driven below weight");
@@ -117,12 +110,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
 
   const std::filesystem::path out = prepare_output_directory(out_name);
   write_resolved_parameters(prm, out);
-  std::cout << "geohybrid pullout: " << anchorage_name(g) << ", H = " << number(g.cover, 4) << " m, L = "
-            << number(g.anchorage_length, 4) << " m"
-            << (g.anchorage == dem::Anchorage::wrap_around
-                  ? ", D1 = " + number(g.return_height, 4) + " m, B = " + number(g.upper_length, 4) + " m"
-                  : std::string())
-            << "; mode hybrid: " << box.n_particles << " particles in the box [" << number(box.x0, 4) << ", "
+  std::cout << "geohybrid pullout: " << anchorage_description(g) << "; mode hybrid: " << box.n_particles << " particles in the box [" << number(box.x0, 4) << ", "
             << number(box.x1, 4) << "] x [" << number(box.y0, 4) << ", " << number(box.y1, 4) << "] m ("
             << in.tank.filling.n_particles << " for the whole tank), " << fem::to_string(spec.continuum.soil.kind)
             << " continuum, coupling " << method_name(spec.region.method) << std::endl;
@@ -161,23 +149,10 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   // 2. The pull: each point of the curve with the sheet as it is then (positions in the tank's
   // frame; the box's frame is shifted by (x0, y0)).
   PulloutOutput output(out, g.sheet_width, in.profiles_at);
-  const std::size_t middle = (tank.first_node_inside + tank.lower_part_end) / 2;
   ProgressReport progress("pulling", in.pull.final_displacement);
   std::size_t n_points = 0;
   hybrid->pull(in.pull, [&](const dem::PullPoint &p) {
-    const dem::SparSheet &sheet = hybrid->particle_system().sheets()[0];
-    const auto moved = [&](std::size_t k) { return sheet.x[k] - tank.initial_nodes[k].x(); };
-    output.add_point(p.head_displacement, p.head_tension,
-                     {{moved(tank.first_node_inside), moved(middle), moved(tank.lower_part_end)}});
-    if (output.profile_due(p.head_displacement))
-      {
-        std::vector<SheetTensionRow> rows;
-        for (std::size_t k = 0; k < sheet.n_segments(); ++k)
-          rows.push_back({k, 0.5 * (tank.arc_length[k] + tank.arc_length[k + 1]),
-                          box.x0 + 0.5 * (sheet.x[k] + sheet.x[k + 1]), box.y0 + 0.5 * (sheet.y[k] + sheet.y[k + 1]),
-                          sheet.tension[k]});
-        output.add_profile(p.head_displacement, rows);
-      }
+    add_dem_sheet_point(output, tank, hybrid->particle_system().sheets()[0], p, dem::Vec2(box.x0, box.y0));
     progress.update(p.head_displacement);
     ++n_points;
   });
@@ -199,15 +174,8 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   summary.set("n_tied_particles", static_cast<double>(s.n_tied));
   summary.set("n_driven_particles", static_cast<double>(s.n_driven));
   summary.set("soil_model", fem::to_string(spec.continuum.soil.kind));
-  summary.set("n_sheet_nodes", static_cast<double>(hybrid->particle_system().sheets()[0].n_nodes()));
-  summary.set("sheet_level_m", sheet_level);
-  summary.set("H_as_laid_m", actual_cover);
-  summary.set("gamma_H_Pa", gamma_H);
-  summary.set("sigma_v_top_face_Pa", before.top_face);
-  summary.set("sigma_v_bottom_face_Pa", before.bottom_face);
-  summary.set("sigma_v_love_weber_above_Pa", before.love_weber_above);
-  summary.set("sigma_v_over_gamma_H", before.top_face / gamma_H);
-  summary.set("one_face_friction_kN_per_m", before.top_face * g.anchorage_length * mu / 1e3);
+  set_dem_sheet_summary(summary, hybrid->particle_system().sheets()[0], sheet_level, actual_cover, gamma_H, before,
+                        before.top_face * g.anchorage_length * mu);
   summary.set("time_step_s", s.time_step);
   summary.set("particle_time_step_s", s.particle_time_step);
   summary.set("n_fill_steps", static_cast<double>(s.fill_steps));

@@ -32,4 +32,7 @@ inline std::string anchorage_name(const dem::PullOutGeometry &g)
 {
   return g.anchorage == dem::Anchorage::wrap_around ? "wrap-around" : "simple run-out";
 }
+
+/// The anchorage for the first line of a run's log: its name, H and L (and D1, B for a wrap-around).
+std::string anchorage_description(const dem::PullOutGeometry &g);
 } // namespace geohybrid::apps

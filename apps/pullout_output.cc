@@ -129,4 +129,35 @@ void PulloutOutput::fill_summary(Summary &summary, const std::string &mode, cons
       summary.set("T_max_difference_percent", 100.0 * (T_max_ / *experimental_T_max - 1.0));
     }
 }
+
+void add_dem_sheet_point(PulloutOutput &output, const dem::PullOutTank &tank, const dem::SparSheet &sheet,
+                         const dem::PullPoint &point, const dem::Vec2 &origin)
+{
+  const std::size_t middle = (tank.first_node_inside + tank.lower_part_end) / 2;
+  const auto moved = [&](std::size_t k) { return sheet.x[k] - tank.initial_nodes[k].x(); };
+  output.add_point(point.head_displacement, point.head_tension,
+                   {{moved(tank.first_node_inside), moved(middle), moved(tank.lower_part_end)}});
+  if (!output.profile_due(point.head_displacement))
+    return;
+  std::vector<SheetTensionRow> rows;
+  for (std::size_t k = 0; k < sheet.n_segments(); ++k)
+    rows.push_back({k, 0.5 * (tank.arc_length[k] + tank.arc_length[k + 1]),
+                    origin.x() + 0.5 * (sheet.x[k] + sheet.x[k + 1]), origin.y() + 0.5 * (sheet.y[k] + sheet.y[k + 1]),
+                    sheet.tension[k]});
+  output.add_profile(point.head_displacement, rows);
+}
+
+void set_dem_sheet_summary(Summary &summary, const dem::SparSheet &sheet, double sheet_level, double cover_as_laid,
+                           double gamma_H, const dem::SheetLevelStress &before, double one_face_friction)
+{
+  summary.set("n_sheet_nodes", static_cast<double>(sheet.n_nodes()));
+  summary.set("sheet_level_m", sheet_level);
+  summary.set("H_as_laid_m", cover_as_laid);
+  summary.set("gamma_H_Pa", gamma_H);
+  summary.set("sigma_v_top_face_Pa", before.top_face);
+  summary.set("sigma_v_bottom_face_Pa", before.bottom_face);
+  summary.set("sigma_v_love_weber_above_Pa", before.love_weber_above);
+  summary.set("sigma_v_over_gamma_H", before.top_face / gamma_H);
+  summary.set("one_face_friction_kN_per_m", one_face_friction / 1e3);
+}
 } // namespace geohybrid::apps

@@ -12,6 +12,7 @@
 #include "apps/run_directory.h"
 
 #include "dem/checkpoint.h"
+#include "dem/pullout_tank.h"
 
 #include <array>
 #include <filesystem>
@@ -81,4 +82,16 @@ private:
   // three sheet displacements), 6 per profile row (u, segment, arc length, x, y, tension).
   std::vector<double> points_, profile_rows_;
 };
+
+/// A point of a DEM sheet's pull (dem and hybrid modes): the curve, the displacements of the
+/// lower part's beginning, middle and end, and the tension profile when one is due. `origin` is
+/// where the particles' frame lies in the tank's (hybrid mode's box; zero in dem mode) [m].
+void add_dem_sheet_point(PulloutOutput &output, const dem::PullOutTank &tank, const dem::SparSheet &sheet,
+                         const dem::PullPoint &point, const dem::Vec2 &origin = dem::Vec2::Zero());
+
+/// The summary keys of the DEM sheet as laid and of the soil's stress on it before the pull (dem
+/// and hybrid modes): its nodes, its level and depth as laid (tank frame), gamma H, the normal
+/// stresses on its faces, and the one-face friction top face x L x tan(delta).
+void set_dem_sheet_summary(Summary &summary, const dem::SparSheet &sheet, double sheet_level, double cover_as_laid,
+                           double gamma_H, const dem::SheetLevelStress &before, double one_face_friction);
 } // namespace geohybrid::apps

@@ -13,7 +13,7 @@ namespace geohybrid::coupling
 namespace
 {
 /// Checks what the stepper needs of both sides before it touches them.
-void check_sides(const dem::DemSystem &particles, const fem::ExplicitSolver &continuum)
+void check_sides(const fem::ExplicitSolver &continuum)
 {
   const std::string where = "coupled stepper: ";
   // The particles may have run before (a packing made, a strain applied): between two steps their
@@ -21,23 +21,20 @@ void check_sides(const dem::DemSystem &particles, const fem::ExplicitSolver &con
   // continuum's are half-step ones after a step.
   if (continuum.n_steps() > 0)
     throw std::invalid_argument(where + "set the coupling up before the continuum takes a step");
-  (void)particles;
 }
 
-const OverlapBand &checked(const dem::DemSystem &particles, const fem::ExplicitSolver &continuum,
-                           const OverlapBand &band, const CouplingMethod &method)
+const OverlapBand &checked(const fem::ExplicitSolver &continuum, const OverlapBand &band, const CouplingMethod &method)
 {
-  check_sides(particles, continuum);
+  check_sides(continuum);
   if (std::holds_alternative<InterfaceCoupling>(method))
     throw std::invalid_argument("coupled stepper: the interface coupling (method 3) has no overlap band: "
                                 "construct the stepper without one");
   return band;
 }
 
-const InterfaceCoupling &checked(const dem::DemSystem &particles, const fem::ExplicitSolver &continuum,
-                                 const InterfaceCoupling &method)
+const InterfaceCoupling &checked(const fem::ExplicitSolver &continuum, const InterfaceCoupling &method)
 {
-  check_sides(particles, continuum);
+  check_sides(continuum);
   return method;
 }
 
@@ -78,7 +75,7 @@ CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &c
                                const CouplingMethod &method, double driven_below_weight)
   : particles_(particles)
   , continuum_(continuum)
-  , band_geometry_(checked(particles, continuum, band, method))
+  , band_geometry_(checked(continuum, band, method))
   , band_(weighted_band(particles, continuum, band, driven_below_weight))
   , tie_(make_tie(method, *band_, particles, continuum, band))
 {
@@ -109,7 +106,7 @@ CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &c
 CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const InterfaceCoupling &method)
   : particles_(particles)
   , continuum_(continuum)
-  , tie_(std::in_place_type<InterfaceWall>, checked(particles, continuum, method), particles.particles(), continuum,
+  , tie_(std::in_place_type<InterfaceWall>, checked(continuum, method), particles.particles(), continuum,
          particles.skin())
 {
   start();

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -57,6 +58,20 @@ struct GhostForces
 /// neighbourhood reaches the patch's free surfaces (where the uniform stress has no traction to
 /// balance it) are left out.
 GhostForces ghost_forces(const CoupledPatch &patch, const PlaneStrain &strain);
+
+/// The measure behind ghost_forces, for any layout of a strained coupled patch: the largest |F|
+/// over |sigma| d of the untied free discs and of the tied ones, and the largest residual r_I over
+/// |sigma| times `node_length` (the cell's size across the band) at the nodes, over the discs and
+/// nodes the predicates call interior (away from the free surfaces). Also counts them.
+struct GhostForceMeasure
+{
+  GhostForces ghost;
+  std::size_t n_discs = 0, n_nodes = 0; ///< untied free discs and DoFs measured
+};
+GhostForceMeasure measure_ghost_forces(const dem::ParticleSet &particles, const fem::ExplicitSolver &continuum,
+                                       const BandParticles &band, double stress, double disc_length,
+                                       double node_length, const std::function<bool(std::size_t)> &interior_disc,
+                                       const std::function<bool(const dealii::Point<2> &)> &interior_node);
 
 struct PatchTestResult
 {

@@ -29,10 +29,11 @@ struct PenaltyCoupling
   /// width; stiffer ties the constraint better and lowers the stable step [-].
   double penalty_factor = 1.0;
 
-  void validate() const
+  /// Throws std::invalid_argument naming `where` and the parameter as the input spells it.
+  void validate(const std::string &where = "penalty coupling", const std::string &name = "penalty factor") const
   {
     if (!(penalty_factor > 0.0) || !(penalty_factor < 1e12))
-      throw std::invalid_argument("penalty coupling: parameter 'penalty factor' = " + std::to_string(penalty_factor) +
+      throw std::invalid_argument(where + ": parameter '" + name + "' = " + std::to_string(penalty_factor) +
                                   " must be positive and finite");
   }
 };

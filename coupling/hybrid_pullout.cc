@@ -1,6 +1,7 @@
 #include "hybrid_pullout.h"
 
 #include "dem/measurements.h"
+#include "fem/constitutive/parameter_check.h"
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
@@ -15,15 +16,6 @@ namespace geohybrid::coupling
 {
 namespace
 {
-void require(bool ok, const std::string &where, const std::string &parameter, double value, const std::string &why)
-{
-  if (ok)
-    return;
-  std::ostringstream message;
-  message << where << ": parameter '" << parameter << "' = " << value << " " << why;
-  throw std::invalid_argument(message.str());
-}
-
 /// Mesh steps over [a, b]: `cell` [m] at most, growing by `growth` per cell away from the fine end(s)
 /// up to `far_cell`, scaled to fit exactly. `fine_at_start`, `fine_at_end`: where the band is.
 std::vector<double> graded_steps(double a, double b, double cell, double far_cell, bool fine_at_start, bool fine_at_end)
@@ -64,19 +56,19 @@ std::vector<double> graded_steps(double a, double b, double cell, double far_cel
 
 void HybridRegionSpec::validate(const std::string &where) const
 {
-  require(margin > 0.0 && std::isfinite(margin), where, "Hybrid/DEM region margin", margin, "must be positive [m]");
-  require(lift_thickness > 0.0 && std::isfinite(lift_thickness), where, "Hybrid/lift thickness", lift_thickness,
+  fem::require_parameter(margin > 0.0 && std::isfinite(margin), where, "Hybrid/DEM region margin", margin, "must be positive [m]");
+  fem::require_parameter(lift_thickness > 0.0 && std::isfinite(lift_thickness), where, "Hybrid/lift thickness", lift_thickness,
           "must be positive [m]");
-  require(band_width >= 0.0 && std::isfinite(band_width), where, "Hybrid/band width", band_width,
+  fem::require_parameter(band_width >= 0.0 && std::isfinite(band_width), where, "Hybrid/band width", band_width,
           "must be zero (automatic) or positive [m]");
-  require(cell_size >= 0.0 && std::isfinite(cell_size), where, "Hybrid/cell size", cell_size,
+  fem::require_parameter(cell_size >= 0.0 && std::isfinite(cell_size), where, "Hybrid/cell size", cell_size,
           "must be zero (automatic) or positive [m]");
-  require(far_cell_size >= 0.0 && std::isfinite(far_cell_size), where, "Hybrid/far cell size", far_cell_size,
+  fem::require_parameter(far_cell_size >= 0.0 && std::isfinite(far_cell_size), where, "Hybrid/far cell size", far_cell_size,
           "must be zero (automatic) or positive [m]");
-  require(driven_below_weight >= 0.0 && driven_below_weight < 1.0, where, "Hybrid/driven below weight",
+  fem::require_parameter(driven_below_weight >= 0.0 && driven_below_weight < 1.0, where, "Hybrid/driven below weight",
           driven_below_weight, "must lie in [0, 1) [-]");
   if (const auto *penalty = std::get_if<PenaltyCoupling>(&method))
-    penalty->validate();
+    penalty->validate(where, "Hybrid/penalty factor");
   if (std::holds_alternative<InterfaceCoupling>(method))
     throw std::invalid_argument(
       where + ": parameter 'Hybrid/coupling method' = interface is not available for the pull-out: the "
@@ -89,9 +81,9 @@ void HybridPullOutSpec::validate(const std::string &where) const
 {
   tank.validate(where);
   region.validate(where);
-  require(continuum.k0 >= 0.0 && std::isfinite(continuum.k0), where, "Continuum/K0", continuum.k0,
+  fem::require_parameter(continuum.k0 >= 0.0 && std::isfinite(continuum.k0), where, "Continuum/K0", continuum.k0,
           "must be zero (the soil's 1 - sin phi) or positive [-]");
-  require(continuum.local_damping >= 0.0 && continuum.local_damping < 1.0, where, "Continuum/local damping",
+  fem::require_parameter(continuum.local_damping >= 0.0 && continuum.local_damping < 1.0, where, "Continuum/local damping",
           continuum.local_damping, "must lie in [0, 1) [-]");
 }
 
@@ -158,7 +150,7 @@ ParticleBox particle_box(const HybridPullOutSpec &spec, const std::string &where
 
 HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &where,
                              const std::function<void(double)> &progress)
-  : spec_(spec), box_(particle_box(spec, where))
+  : box_(particle_box(spec, where))
 {
   if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     throw std::invalid_argument(where + ": 'mode' = hybrid runs on one MPI rank");
@@ -306,8 +298,8 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
   // unbalanced-force ratio, and for at least the time a P-wave takes to cross the tank ten times
   // (the particles were at rest under their own weight alone: their ratio starts low).
   const double target = spec.tank.filling.equilibrium_unbalanced_ratio;
-  const double young = spec.continuum.soil.young_modulus, nu = spec.continuum.soil.poisson_ratio;
-  const double p_wave_modulus = young * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  const fem::IsotropicElasticity &elasticity = soil.elasticity();
+  const double p_wave_modulus = elasticity.lame_lambda() + 2.0 * elasticity.shear_modulus();
   const double crossing = std::max(g.fill_height, g.tank_length) / std::sqrt(p_wave_modulus / settings.density);
   const auto min_steps = static_cast<std::uint64_t>(10.0 * crossing / stepper_->time_step());
   for (;;)
@@ -334,19 +326,12 @@ HybridPullOut::~HybridPullOut() = default;
 std::vector<dem::PullPoint> HybridPullOut::pull(const dem::PullSpec &spec,
                                                 const std::function<void(const dem::PullPoint &)> &record)
 {
-  dem::DemSystem &particles = tank_->tank.system;
-  dem::PullOut pull(particles, spec, [this] { stepper_->step(); });
-  std::vector<dem::PullPoint> points{pull.start_point()};
-  if (record)
-    record(points.back());
-  while (!pull.finished())
-    if (pull.step())
-      {
-        points.push_back(pull.last_point());
-        if (record)
-          record(points.back());
-      }
-  pull.stop_clamp();
-  return points;
+  return dem::pull_out(
+    tank_->tank.system, spec,
+    [&record](const dem::PullPoint &point, const dem::DemSystem &) {
+      if (record)
+        record(point);
+    },
+    [this] { stepper_->step(); });
 }
 } // namespace geohybrid::coupling

@@ -144,7 +144,6 @@ public:
   const OverlapBand &band() const { return *band_; }
 
 private:
-  HybridPullOutSpec spec_;
   ParticleBox box_;
   std::unique_ptr<dem::PullOutTank> tank_;
   std::unique_ptr<dealii::parallel::distributed::Triangulation<fem::dim>> mesh_;

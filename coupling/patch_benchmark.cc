@@ -98,36 +98,31 @@ CoupledPatch strained_patch(const CouplingMethod &method, const PlaneStrain &eps
   return patch;
 }
 
-GhostForces ghost_forces(const CoupledPatch &patch, const PlaneStrain &eps)
+GhostForceMeasure measure_ghost_forces(const dem::ParticleSet &p, const fem::ExplicitSolver &continuum,
+                                       const BandParticles &band, double stress, double disc_length,
+                                       double node_length, const std::function<bool(std::size_t)> &interior_disc,
+                                       const std::function<bool(const dealii::Point<2> &)> &interior_node)
 {
-  const PatchGeometry &g = patch.geometry;
-  const double stress = stress_norm(g, eps);
-  const double d = g.spacing(), h = g.row_height();
-  const double cell_x = (g.continuum_end - g.band_start) * d / g.cells_x, cell_y = g.rows * h / g.cells_y;
-  const double y_bottom = -0.5 * h, y_top = (g.rows - 0.5) * h;
-
-  GhostForces ghost;
-  const dem::ParticleSet &p = patch.particles->particles();
-  const BandParticles &band = patch.stepper->band_particles();
+  GhostForceMeasure measure;
+  GhostForces &ghost = measure.ghost;
   std::vector<bool> tied(p.n_bodies(), false);
   for (const std::uint32_t b : band.body)
     tied[b] = true;
   for (std::size_t b = 0; b < p.n_bodies(); ++b)
-    {
-      const bool surface = p.y[b] < 0.5 * h || p.y[b] > (g.rows - 1.5) * h || p.x[b] < 1.2 * d;
-      if (!surface && !tied[b] && p.inverse_mass[b] > 0.0) // driven particles: projected with the continuum's force
-        ghost.particles_outside_band = std::max(ghost.particles_outside_band, std::hypot(p.fx[b], p.fy[b]) / (stress * d));
-    }
-  const auto &continuum = *patch.continuum;
+    if (interior_disc(b) && !tied[b] && p.inverse_mass[b] > 0.0) // driven particles: projected with the continuum's force
+      {
+        ghost.particles_outside_band =
+          std::max(ghost.particles_outside_band, std::hypot(p.fx[b], p.fy[b]) / (stress * disc_length));
+        ++measure.n_discs;
+      }
   std::vector<double> residual(continuum.internal_force().locally_owned_size());
   for (unsigned int i = 0; i < residual.size(); ++i)
     residual[i] = continuum.external_force().local_element(i) - continuum.internal_force().local_element(i);
   for (std::size_t q = 0; q < band.size(); ++q)
     {
       const std::uint32_t b = band.body[q];
-      const bool surface = p.y[b] < 0.5 * h || p.y[b] > (g.rows - 1.5) * h;
-      if (!surface)
-        ghost.band_particles = std::max(ghost.band_particles, std::hypot(p.fx[b], p.fy[b]) / (stress * d));
+      if (interior_disc(b))
+        ghost.band_particles = std::max(ghost.band_particles, std::hypot(p.fx[b], p.fy[b]) / (stress * disc_length));
       for (unsigned int k = 0; k < band.points.nodes_per_point(); ++k)
         {
           residual[band.points.x_dof(q, k)] += band.points.shape_value(q, k) * p.fx[b];
@@ -137,13 +132,31 @@ GhostForces ghost_forces(const CoupledPatch &patch, const PlaneStrain &eps)
   std::map<dealii::types::global_dof_index, dealii::Point<2>> support;
   dealii::DoFTools::map_dofs_to_support_points(continuum.space().mapping(), continuum.space().dof_handler(), support);
   for (const auto &[dof, x] : support)
-    {
-      const bool near_surface = x[1] < y_bottom + 1.5 * cell_y || x[1] > y_top - 1.5 * cell_y ||
-                                x[0] > g.continuum_end * d - 0.5 * cell_x;
-      if (!near_surface)
-        ghost.continuum_nodes = std::max(ghost.continuum_nodes, std::abs(residual[dof]) / (stress * cell_x));
-    }
-  return ghost;
+    if (interior_node(x))
+      {
+        ghost.continuum_nodes = std::max(ghost.continuum_nodes, std::abs(residual[dof]) / (stress * node_length));
+        ++measure.n_nodes;
+      }
+  return measure;
+}
+
+GhostForces ghost_forces(const CoupledPatch &patch, const PlaneStrain &eps)
+{
+  const PatchGeometry &g = patch.geometry;
+  const double d = g.spacing(), h = g.row_height();
+  const double cell_x = (g.continuum_end - g.band_start) * d / g.cells_x, cell_y = g.rows * h / g.cells_y;
+  const double y_bottom = -0.5 * h, y_top = (g.rows - 0.5) * h;
+  const dem::ParticleSet &p = patch.particles->particles();
+  // Away from the lattice's free rows and its free left end (the band's discs are far from it).
+  const auto interior_disc = [&](std::size_t b) {
+    return !(p.y[b] < 0.5 * h || p.y[b] > (g.rows - 1.5) * h || p.x[b] < 1.2 * d);
+  };
+  const auto interior_node = [&](const dealii::Point<2> &x) {
+    return !(x[1] < y_bottom + 1.5 * cell_y || x[1] > y_top - 1.5 * cell_y || x[0] > g.continuum_end * d - 0.5 * cell_x);
+  };
+  return measure_ghost_forces(p, *patch.continuum, patch.stepper->band_particles(), stress_norm(g, eps), d, cell_x,
+                              interior_disc, interior_node)
+    .ghost;
 }
 
 PatchTestResult patch_test(const CouplingMethod &method, const PlaneStrain &strain, const PatchGeometry &geometry)

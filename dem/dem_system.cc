@@ -377,7 +377,7 @@ struct BodyLoopInput
 {
   double dt = 0.0, alpha = 0.0, gx = 0.0, gy = 0.0;
   double *damping_fx = nullptr, *damping_fy = nullptr, *damping_torque = nullptr, *scratch = nullptr;
-  const double *damping_scale = nullptr; ///< per body 1 or 0 (set_undamped_bodies), or none
+  const double *damping_scale = nullptr; ///< per body 1 or 0 (set_constrained_bodies), or none
   const double *reference_x = nullptr, *reference_y = nullptr; ///< disc positions at the last rebuild
 };
 

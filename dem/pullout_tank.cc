@@ -527,9 +527,10 @@ SheetLevelStress restore_sheet_level_stress(const CommandState &c)
 }
 
 std::vector<PullPoint> pull_out(DemSystem &system, const PullSpec &spec,
-                                const std::function<void(const PullPoint &, const DemSystem &)> &record)
+                                const std::function<void(const PullPoint &, const DemSystem &)> &record,
+                                const std::function<void()> &advance)
 {
-  PullOut pull(system, spec);
+  PullOut pull = advance ? PullOut(system, spec, advance) : PullOut(system, spec);
   std::vector<PullPoint> points{pull.start_point()};
   if (record)
     record(points.back(), system);

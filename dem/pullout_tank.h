@@ -252,9 +252,12 @@ std::optional<PullProgress> restore_pull_progress(const CommandState &command);
 void store_sheet_level_stress(const SheetLevelStress &stress, CommandState &command);
 SheetLevelStress restore_sheet_level_stress(const CommandState &command);
 
-/// Pulls the clamp (node 0 of sheet 0) along +x at spec.rate, with the system's local damping, until spec.final_displacement; after each record
-/// interval calls `record` with the point and the system (for profiles and progress). Throws
+/// Pulls the clamp (node 0 of sheet 0) along +x at spec.rate, with the system's local damping,
+/// until spec.final_displacement; after each record interval calls `record` with the point and
+/// the system (for profiles and progress). `advance`, if given, steps the system instead of
+/// DemSystem::step (a coupled run's stepper: PullOut's third constructor). Throws
 /// std::invalid_argument for a non-positive rate, displacement or interval.
 std::vector<PullPoint> pull_out(DemSystem &system, const PullSpec &spec,
-                                const std::function<void(const PullPoint &, const DemSystem &)> &record = {});
+                                const std::function<void(const PullPoint &, const DemSystem &)> &record = {},
+                                const std::function<void()> &advance = {});
 } // namespace geohybrid::dem

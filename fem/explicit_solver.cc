@@ -65,8 +65,14 @@ ExplicitSolver::ExplicitSolver(const dealii::parallel::distributed::Triangulatio
   for (unsigned int i = 0; i < n_owned; ++i)
     x_component_[i] = x_dofs.is_element(owned.nth_index_in_set(i)) ? 1 : 0;
   constrained_.assign(n_owned, false);
-  for (const auto &entry : prescribed_displacements(0.0))
+  prescribed_ = prescribed_displacements(0.0);
+  for (const auto &entry : prescribed_)
     constrained_[owned.index_within_set(entry.first)] = true;
+  // Supports that do not move (no function: u = 0) are the same at every step: interpolated once
+  // (here). Interpolating boundary values visits every boundary face and costs more than the rest
+  // of a small mesh's step (a coupled run steps the continuum at the particles' step).
+  fixed_supports_ = std::all_of(boundary_conditions_.displacements.begin(), boundary_conditions_.displacements.end(),
+                                [](const DisplacementBoundary &d) { return !d.displacement; });
 
   assemble_mass_and_body_force();
   build_cell_cache();
@@ -412,17 +418,8 @@ void ExplicitSolver::take_step(double dt)
   const double dt_velocity = 0.5 * (previous_step_ + dt);
   const double alpha = settings_.damping.mass_proportional, alpha_local = settings_.damping.local;
   const double new_time = time_ + dt;
-  // Supports that do not move (no function: u = 0) are the same at every step: interpolated
-  // once. Interpolating boundary values visits every boundary face and costs more than the rest
-  // of a small mesh's step (a coupled run steps the continuum at the particles' step).
-  const bool fixed_supports = std::all_of(boundary_conditions_.displacements.begin(),
-                                          boundary_conditions_.displacements.end(),
-                                          [](const DisplacementBoundary &d) { return !d.displacement; });
-  if (!fixed_supports || !prescribed_cached_)
-    {
-      prescribed_ = prescribed_displacements(new_time);
-      prescribed_cached_ = fixed_supports;
-    }
+  if (!fixed_supports_)
+    prescribed_ = prescribed_displacements(new_time);
   const auto &prescribed = prescribed_;
   const auto &owned = space_.locally_owned_dofs();
   for (unsigned int i = 0; i < velocity_.locally_owned_size(); ++i)

@@ -167,8 +167,6 @@ private:
   void assemble_external_force(double time);
   /// The prescribed displacements at `time`, on the locally owned constrained DoFs.
   std::map<dealii::types::global_dof_index, double> prescribed_displacements(double time) const;
-  std::map<dealii::types::global_dof_index, double> prescribed_; ///< of the last step
-  bool prescribed_cached_ = false; ///< prescribed_ holds the fixed supports (no displacement functions)
   void take_step(double dt);
 
   SoilModel soil_;
@@ -177,6 +175,8 @@ private:
   DisplacementSpace space_;
   MaterialPointHistory material_points_;
   std::vector<bool> constrained_;      ///< per locally owned DoF (local index): displacement prescribed
+  std::map<dealii::types::global_dof_index, double> prescribed_; ///< the prescribed displacements of the last step
+  bool fixed_supports_ = false;        ///< no displacement function: prescribed_ is the same at every step
   std::vector<unsigned int> x_component_; ///< per locally owned DoF: 1 for x, 0 for y
   std::vector<bool> undamped_;         ///< per locally owned DoF (set_undamped_dofs); empty: all damped
   double critical_time_step_ = 0.0;

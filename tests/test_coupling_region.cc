@@ -330,48 +330,22 @@ HorizontalPatchResult horizontal_side_patch_test(const HorizontalPatch &layout, 
   const OverlapBand band = OverlapBand::around_convex_region(rectangle(-10.0, -10.0, 10.0, layout.a * d), w);
   const CoupledStepper stepper(*particles, continuum, band, LagrangeMultiplierCoupling{});
 
-  const double stress = stress_norm(g, eps);
   const double cell_x = (x_right - x_left) / layout.cells_x, cell_y = (layout.end - layout.a) * d / layout.cells_y;
-  HorizontalPatchResult result;
-  GhostForces &ghost = result.ghost;
   const dem::ParticleSet &p = particles->particles();
   const BandParticles &tied = stepper.band_particles();
-  std::vector<bool> is_tied(p.n_bodies(), false);
-  for (const std::uint32_t b : tied.body)
-    is_tied[b] = true;
-  const auto near_free_side = [&](std::size_t b) { return p.x[b] < 1.0 * d || p.x[b] > (layout.columns - 2.0) * d; };
-  for (std::size_t b = 0; b < p.n_bodies(); ++b)
-    if (!near_free_side(b) && p.y[b] > 1.2 * d && !is_tied[b] && p.inverse_mass[b] > 0.0)
-      {
-        ghost.particles_outside_band = std::max(ghost.particles_outside_band, std::hypot(p.fx[b], p.fy[b]) / (stress * d));
-        ++result.n_discs_measured;
-      }
-  std::vector<double> residual(continuum.internal_force().locally_owned_size());
-  for (unsigned int i = 0; i < residual.size(); ++i)
-    residual[i] = continuum.external_force().local_element(i) - continuum.internal_force().local_element(i);
-  for (std::size_t q = 0; q < tied.size(); ++q)
-    {
-      const std::uint32_t b = tied.body[q];
-      if (!near_free_side(b))
-        ghost.band_particles = std::max(ghost.band_particles, std::hypot(p.fx[b], p.fy[b]) / (stress * d));
-      for (unsigned int k = 0; k < tied.points.nodes_per_point(); ++k)
-        {
-          residual[tied.points.x_dof(q, k)] += tied.points.shape_value(q, k) * p.fx[b];
-          residual[tied.points.y_dof(q, k)] += tied.points.shape_value(q, k) * p.fy[b];
-        }
-    }
-  std::map<dealii::types::global_dof_index, dealii::Point<2>> support;
-  dealii::DoFTools::map_dofs_to_support_points(continuum.space().mapping(), continuum.space().dof_handler(), support);
-  for (const auto &[dof, x] : support)
-    {
-      const bool near_surface = x[0] < x_left + 1.5 * cell_x || x[0] > x_right - 1.5 * cell_x ||
-                                x[1] > layout.end * d - 0.5 * cell_y;
-      if (!near_surface)
-        {
-          ghost.continuum_nodes = std::max(ghost.continuum_nodes, std::abs(residual[dof]) / (stress * cell_y));
-          ++result.n_nodes_measured;
-        }
-    }
+  // Away from the free sides and the lattice's free bottom (the band's discs are far from it).
+  const auto interior_disc = [&](std::size_t b) {
+    return !(p.x[b] < 1.0 * d || p.x[b] > (layout.columns - 2.0) * d) && p.y[b] > 1.2 * d;
+  };
+  const auto interior_node = [&](const dealii::Point<2> &x) {
+    return !(x[0] < x_left + 1.5 * cell_x || x[0] > x_right - 1.5 * cell_x || x[1] > layout.end * d - 0.5 * cell_y);
+  };
+  const GhostForceMeasure measure =
+    measure_ghost_forces(p, continuum, tied, stress_norm(g, eps), d, cell_y, interior_disc, interior_node);
+  HorizontalPatchResult result;
+  result.ghost = measure.ghost;
+  result.n_discs_measured = static_cast<unsigned int>(measure.n_discs);
+  result.n_nodes_measured = static_cast<unsigned int>(measure.n_nodes);
   result.n_tied = tied.size();
   result.n_driven = tied.driven_body.size();
   return result;
