@@ -53,6 +53,11 @@ void declare_hybrid_parameters(ParameterHandler &prm)
                     "hybrid mode: the band's particles whose energy weight (1 at the core's edge, 0 at the "
                     "continuum's) is below this are moved by the continuum instead of tied to it, which keeps the "
                     "coupled step near the particles' own; in [0, 1) [-]");
+  prm.declare_entry("scale band inertia", region.scale_band_inertia ? "true" : "false", Patterns::Bool(),
+                    "hybrid mode: raise the inertial mass (not the weight) of each band particle to the weight of "
+                    "its stiffest contact, so that the band does not lower the stable step (a density scaling of "
+                    "the band: its statics are unchanged, its dynamics are not the weighted ones; a quasi-static "
+                    "pull needs only the statics)");
   prm.leave_subsection();
 }
 
@@ -75,6 +80,7 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
   else
     r.method = coupling::LagrangeMultiplierCoupling{};
   r.driven_below_weight = prm.get_double("driven below weight");
+  r.scale_band_inertia = prm.get_bool("scale band inertia");
   prm.leave_subsection();
 
   const ContinuumSoilInput soil = parse_continuum_soil(prm);

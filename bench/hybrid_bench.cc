@@ -4,7 +4,7 @@
 // the table of bench/RESULTS.md.
 //
 //   hybrid_bench --mode dem|hybrid [--margin M] [--seed S] [--particles N] [--displacement D]
-//                [--rate R] [--threads T] [--young E]
+//                [--rate R] [--threads T] [--young E] [--scale-inertia 0|1] [--driven W]
 //
 // The tank: 0.8 m x 0.3 m, a simple run-out L = 0.5 m at H = 0.15 m, grains of about 4 mm
 // (N = 12,000 two-disc clusters for the whole tank), the soft contacts of the DEM pull-out tests,
@@ -76,7 +76,8 @@ int main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   std::string mode = "hybrid";
-  double margin = 0.05, displacement = 0.005, rate = 0.02, young = 5e6;
+  double margin = 0.05, displacement = 0.005, rate = 0.02, young = 5e6, driven_below_weight = 0.1;
+  bool scale_inertia = true;
   std::size_t particles = 12000;
   std::uint64_t seed = 1;
   int threads = 2;
@@ -97,6 +98,10 @@ int main(int argc, char **argv)
         rate = std::stod(value);
       else if (key == "--threads")
         threads = std::stoi(value);
+      else if (key == "--scale-inertia")
+        scale_inertia = value != "0";
+      else if (key == "--driven")
+        driven_below_weight = std::stod(value);
       else if (key == "--young")
         young = std::stod(value);
       else
@@ -134,6 +139,8 @@ int main(int argc, char **argv)
   spec.tank = tank;
   spec.region.margin = margin;
   spec.region.lift_thickness = 0.05;
+  spec.region.scale_band_inertia = scale_inertia;
+  spec.region.driven_below_weight = driven_below_weight;
   spec.continuum.soil.kind = fem::SoilModelKind::linear_elastic;
   spec.continuum.soil.young_modulus = young;
   spec.continuum.soil.poisson_ratio = 0.3;
@@ -141,7 +148,8 @@ int main(int argc, char **argv)
   const double setup = seconds_since(start);
   const coupling::HybridSetUp &s = hybrid.set_up();
   const coupling::ParticleBox &box = hybrid.box();
-  std::cout << "margin_m=" << margin << "\nyoung_Pa=" << young << "\nn_particles=" << s.n_particles << "\nn_cells=" << s.n_cells
+  std::cout << "margin_m=" << margin << "\nscale_inertia=" << scale_inertia << "\ndriven_below_weight=" << driven_below_weight
+            << "\ncontinuum_time_step_s=" << hybrid.continuum().critical_time_step() << "\nyoung_Pa=" << young << "\nn_particles=" << s.n_particles << "\nn_cells=" << s.n_cells
             << "\nn_tied=" << s.n_tied << "\nn_driven=" << s.n_driven << "\nbox=" << box.x0 << "," << box.y0 << ","
             << box.x1 << "," << box.y1 << "\nband_width_m=" << s.band_width << "\nsettling_steps=" << s.settling_steps
             << "\ntime_step_s=" << s.time_step << "\nparticle_time_step_s=" << s.particle_time_step

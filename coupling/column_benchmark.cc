@@ -82,7 +82,8 @@ ColumnRecord geostatic_column(const CouplingMethod &method, const ColumnSpec &sp
   continuum_settings.damping.local = spec.local_damping;
   patch.continuum =
     std::make_unique<fem::ExplicitSolver>(*patch.mesh, matching_soil(g), fem::BoundaryConditions{}, continuum_settings);
-  patch.stepper = std::make_unique<CoupledStepper>(*patch.particles, *patch.continuum, patch_band(g), method);
+  patch.stepper = std::make_unique<CoupledStepper>(*patch.particles, *patch.continuum, patch_band(g), method,
+                                                   BandTreatment{0.0, spec.scale_band_inertia});
 
   ColumnRecord record;
   record.time_step = patch.stepper->time_step();

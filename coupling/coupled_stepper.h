@@ -55,6 +55,18 @@ struct CouplingDiagnostics
   CouplingForceSums forces;        ///< the last coupling forces on each side
 };
 
+/// How the band's particles are treated (methods 1 and 2).
+struct BandTreatment
+{
+  /// The band's particles lighter than this are driven by the continuum, not tied to it
+  /// (OverlapBand::driven_from; 0: only those past the band) [-].
+  double driven_below_weight = 0.0;
+  /// Quasi-static runs only: the band's inertia scaled so that its light particles do not lower
+  /// the stable step (DemSystem::scale_band_inertia; statics unchanged, the band's dynamics not
+  /// the weighted ones).
+  bool scale_inertia = false;
+};
+
 class CoupledStepper
 {
 public:
@@ -62,10 +74,9 @@ public:
   /// the particles' force hook). Throws std::invalid_argument as described above, or from the
   /// band (no particle in it, a particle outside the mesh, a particle in the continuum-only region).
   /// Methods 1 and 2 (`method` must not be an InterfaceCoupling: that one has no band).
-  /// `driven_below_weight`: the band's particles lighter than this are driven, not tied
-  /// (OverlapBand::driven_from; 0, the default, drives only those past the band).
+  /// `treatment`: which of the band's particles are driven, and whether its inertia is scaled.
   CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
-                 const CouplingMethod &method, double driven_below_weight = 0.0);
+                 const CouplingMethod &method, const BandTreatment &treatment = {});
   /// Method 3: the particles touch the continuum's boundary `method.boundary_id` (no overlap).
   /// Throws std::invalid_argument as above, or from InterfaceWall.
   CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const InterfaceCoupling &method);
@@ -100,6 +111,9 @@ private:
   std::variant<LagrangeTie, PenaltyTie, InterfaceWall> tie_;
   CouplingForceSums forces_;
   std::vector<Vec2> driven_tied_displacement_; ///< u(X) of each driven particle when tied [m]
+  bool band_inertia_scaled_ = false;
   double time_step_ = 0.0;
+  /// The fraction of the estimated stable step taken with the band's inertia scaled (start()).
+  static constexpr double scaled_band_step_fraction = 0.8;
 };
 } // namespace geohybrid::coupling

@@ -199,6 +199,8 @@ struct ColumnSpec
   double window = 4.0;                ///< length of each stress window along the column, in spacings
   double tolerance = 1e-6;            ///< rest: the windows' stresses change by less than this, relative, over 500 steps
   unsigned int max_steps = 60000;
+  /// The band's inertia scaled (BandTreatment::scale_inertia): the statics must not change.
+  bool scale_band_inertia = false;
 };
 /// One stress window: its centre's height [m], the measured vertical stress and the weight above
 /// it (both as compressions, positive) [Pa], the model that measured it.

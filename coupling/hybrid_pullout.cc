@@ -288,8 +288,9 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
   if (box_.bottom_shared)
     walls[tank_->tank.walls.base].translate(Vec2(0.0, -park));
   particles.request_neighbour_rebuild();
-  stepper_ = std::make_unique<CoupledStepper>(particles, *continuum_, *band_, spec.region.method,
-                                              spec.region.driven_below_weight);
+  stepper_ = std::make_unique<CoupledStepper>(
+    particles, *continuum_, *band_, spec.region.method,
+    BandTreatment{spec.region.driven_below_weight, spec.region.scale_band_inertia});
   set_up_.n_tied = stepper_->band_particles().size();
   set_up_.n_driven = stepper_->band_particles().driven_body.size();
   set_up_.time_step = stepper_->time_step();

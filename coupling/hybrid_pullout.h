@@ -69,6 +69,9 @@ struct HybridRegionSpec
   /// stable step then stays within about a third of the particles' own (OverlapBand::driven_from;
   /// with 0 a tank's band took it from 4e-5 s to 1.6e-7 s) [-].
   double driven_below_weight = 0.1;
+  /// The band's inertia scaled (DemSystem::scale_band_inertia): a quasi-static pull-out needs
+  /// the band's statics, not its weighted dynamics, and the step goes back to the particles' own.
+  bool scale_band_inertia = true;
   /// Throws std::invalid_argument naming `where` and the parameter.
   void validate(const std::string &where) const;
 };

@@ -137,6 +137,17 @@ double DemSystem::required_sheet_mass_scaling(const SparSheet &sheet) const
   return sheet.required_mass_scaling(dt, contact_stiffness);
 }
 
+namespace
+{
+double largest_disc_radius(const ParticleSet &p)
+{
+  double largest = 0.0;
+  for (const double r : p.disc_radius)
+    largest = std::max(largest, r);
+  return largest;
+}
+} // namespace
+
 double DemSystem::critical_time_step() const
 {
   // The stiffest law any contact of the system can have.
@@ -153,10 +164,7 @@ double DemSystem::critical_time_step() const
       ks_max = std::max(ks_max, law.shear_stiffness());
     }
   const ParticleSet &p = particles_;
-  double largest_radius = 0.0;
-  if (weighted_)
-    for (double r : p.disc_radius)
-      largest_radius = std::max(largest_radius, r);
+  const double largest_radius = weighted_ ? largest_disc_radius(p) : 0.0;
   double dt = std::numeric_limits<double>::infinity();
   for (std::size_t b = 0; b < p.n_bodies(); ++b)
     {
@@ -175,17 +183,9 @@ double DemSystem::critical_time_step() const
           rotational_stiffness +=
             max_contacts_per_disc * (ks_max * (radius2 + 0.5 * offset2) + kn_max * 0.5 * offset2);
         }
-      // With energy weights the mass is already weighted; the contacts' springs are weighted by
-      // at most the weight at the far end of the longest branch (twice the largest disc radius
-      // beyond the body's farthest disc).
-      double stiffness_weight = 1.0;
-      if (weighted_)
-        {
-          double reach = 0.0;
-          for (std::uint32_t d = p.first_disc[b]; d < p.first_disc[b] + p.n_discs[b]; ++d)
-            reach = std::max(reach, std::hypot(p.disc_offset_x[d], p.disc_offset_y[d]) + 2.0 * largest_radius);
-          stiffness_weight = energy_weights_.largest_contact_weight(b, reach);
-        }
+      // With energy weights the mass is already weighted (and perhaps scaled: scale_band_inertia);
+      // the contacts' springs are weighted by at most largest_contact_weight.
+      const double stiffness_weight = weighted_ ? largest_contact_weight(b, largest_radius) : 1.0;
       const double omega2_translation = stiffness_weight * n_contacts * (kn_max + ks_max) * p.inverse_mass[b];
       const double omega2_rotation = stiffness_weight * 2.0 * rotational_stiffness * p.inverse_inertia[b];
       dt = std::min(dt, 2.0 / std::sqrt(std::max(omega2_translation, omega2_rotation)));
@@ -277,6 +277,41 @@ void DemSystem::set_energy_weights(EnergyWeights weights)
   if (settings_.time_step <= 0.0)
     time_step_ = std::min(time_step_, settings_.time_step_safety * critical_time_step());
   set_time_step(time_step_);
+}
+
+double DemSystem::largest_contact_weight(std::size_t b, double largest_radius) const
+{
+  // The weight at the far end of the longest branch: twice the largest disc radius beyond the
+  // body's farthest disc.
+  const ParticleSet &p = particles_;
+  double reach = 0.0;
+  for (std::uint32_t d = p.first_disc[b]; d < p.first_disc[b] + p.n_discs[b]; ++d)
+    reach = std::max(reach, std::hypot(p.disc_offset_x[d], p.disc_offset_y[d]) + 2.0 * largest_radius);
+  return energy_weights_.largest_contact_weight(b, reach);
+}
+
+double DemSystem::scale_band_inertia()
+{
+  if (!weighted_)
+    throw std::logic_error("DEM: scale_band_inertia needs the energy weights (set_energy_weights)");
+  if (!inertia_scale_.empty())
+    throw std::logic_error("DEM: the band's inertia is already scaled");
+  ParticleSet &p = particles_;
+  inertia_scale_.assign(p.n_bodies(), 1.0);
+  const double largest_radius = largest_disc_radius(p);
+  double largest = 1.0;
+  for (std::size_t b = 0; b < p.n_bodies(); ++b)
+    if (p.inverse_mass[b] != 0.0)
+      {
+        const double factor = std::max(1.0, largest_contact_weight(b, largest_radius) / energy_weights_.body_weight(b));
+        inertia_scale_[b] = factor;
+        p.inverse_mass[b] /= factor;
+        p.inverse_inertia[b] /= factor;
+        largest = std::max(largest, factor);
+      }
+  if (settings_.time_step <= 0.0)
+    set_time_step(settings_.time_step_safety * critical_time_step());
+  return largest;
 }
 
 void DemSystem::set_constrained_bodies(const std::vector<std::uint32_t> &bodies)
@@ -1040,8 +1075,9 @@ EnergyBudget DemSystem::energy() const
     {
       if (p.inverse_mass[b] == 0.0)
         continue;
-      e.kinetic += 0.5 * p.mass[b] * (p.vx[b] * p.vx[b] + p.vy[b] * p.vy[b]) +
-                   0.5 * p.inertia[b] * p.omega[b] * p.omega[b];
+      const double scale = inertia_scale_.empty() ? 1.0 : inertia_scale_[b];
+      e.kinetic += scale * (0.5 * p.mass[b] * (p.vx[b] * p.vx[b] + p.vy[b] * p.vy[b]) +
+                            0.5 * p.inertia[b] * p.omega[b] * p.omega[b]);
       e.gravitational -= p.mass[b] * (settings_.gravity.x() * p.x[b] + settings_.gravity.y() * p.y[b]);
     }
   for (std::size_t q = 0; q < pairs_.size(); ++q)

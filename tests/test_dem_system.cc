@@ -780,6 +780,47 @@ TEST(EnergyWeights, ScaleMassesAndContactForcesByTheBranchMean)
   EXPECT_THROW(past.set_energy_weights(past_the_band), std::invalid_argument);
 }
 
+// The band's density scaling (DemSystem::scale_band_inertia): the light body's inertial mass is
+// raised to its stiffest contact's weight, its weight (gravity) is not, and the critical step
+// goes back to the unweighted pair's.
+TEST(EnergyWeights, BandInertiaScalingKeepsTheWeightAndRestoresTheStep)
+{
+  const double r = 0.005, width = 0.008, g = 9.81;
+  const auto make = [&] {
+    ParticleSet p;
+    p.add_disc(Vec2(0.0, 0.0), r, 2000.0);
+    p.add_disc(Vec2(2 * r, 0.0), r, 2000.0);
+    DemSettings s;
+    s.gravity = Vec2(0.0, -g);
+    s.local_damping = 0.0;
+    return DemSystem(p, LinearContactLaw(), s);
+  };
+  DemSystem plain = make(), scaled = make();
+  EnergyWeights weights;
+  weights.band_width = width;
+  weights.body_band_coordinate.resize(2);
+  weights.body_band_coordinate[0] = -0.004;    // weight 1
+  weights.body_band_coordinate[1] = 0.006;     // weight 1 - 0.006 / 0.008 = 0.25
+  EXPECT_THROW(scaled.scale_band_inertia(), std::logic_error); // no weights yet
+  scaled.set_energy_weights(weights);
+  const double weighted_step = scaled.critical_time_step();
+  // Body 1's stiffest contact reaches 2 r = 10 mm towards the core: s = -0.004, weight 1.
+  EXPECT_NEAR(scaled.scale_band_inertia(), 4.0, 1e-12);
+  EXPECT_THROW(scaled.scale_band_inertia(), std::logic_error);
+  const ParticleSet &p = scaled.particles();
+  const double m = plain.particles().mass[1];
+  EXPECT_NEAR(p.mass[1], 0.25 * m, 1e-12 * m);                // the weight gravity acts on
+  EXPECT_NEAR(1.0 / p.inverse_mass[1], m, 1e-12 * m);         // the inertial mass
+  EXPECT_NEAR(1.0 / p.inverse_mass[0], m, 1e-12 * m);         // the core's body unchanged
+  EXPECT_LT(weighted_step, 0.6 * plain.critical_time_step());
+  EXPECT_NEAR(scaled.critical_time_step(), plain.critical_time_step(), 1e-12 * plain.critical_time_step());
+  // Falling freely (the discs touch without overlap): body 1 accelerates at g / 4.
+  scaled.run_steps(10);
+  const double t = 10 * scaled.time_step();
+  EXPECT_NEAR(scaled.particles().vy[1], -0.25 * g * t, 1e-9 * g * t);
+  EXPECT_NEAR(scaled.particles().vy[0], -g * t, 1e-9 * g * t);
+}
+
 TEST(EnergyWeights, ForceHookActsBeforeTheSecondHalfKick)
 {
   ParticleSet p;
