@@ -271,6 +271,7 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
   settings.density = spec.tank.unit_weight / gravity;
   settings.gravity[1] = -gravity;
   settings.damping.local = spec.continuum.local_damping;
+  settings.n_threads = static_cast<unsigned int>(std::max(1, spec.tank.filling.n_threads)); // the particles' threads
   const fem::SoilModel soil(spec.continuum.soil);
   continuum_ = std::make_unique<fem::ExplicitSolver>(*mesh_, soil, conditions, settings);
   fem::GeostaticStress geostatic;

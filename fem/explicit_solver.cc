@@ -31,6 +31,7 @@ void ExplicitSettings::validate(const std::string &where) const
                     "mass-proportional damping", damping.mass_proportional, "must be zero or positive [1/s]");
   require_parameter(damping.local >= 0.0 && damping.local < 1.0, where, "local damping", damping.local,
                     "must lie in [0, 1) [-]");
+  require_parameter(n_threads >= 1, where, "threads", n_threads, "must be at least 1");
 }
 
 ExplicitSolver::ExplicitSolver(const dealii::parallel::distributed::Triangulation<dim> &mesh, const SoilModel &soil,
@@ -341,6 +342,26 @@ void ExplicitSolver::build_cell_cache()
           }
         cells_.push_back(std::move(c));
       }
+  // Colours: greedy in cell order, the lowest colour none of the cell's DoFs has yet (a
+  // structured Q1 or Q2 mesh takes 4).
+  std::vector<std::uint64_t> dof_colours(partitioner.locally_owned_size() + partitioner.n_ghost_indices(), 0);
+  colours_.clear();
+  for (unsigned int k = 0; k < cells_.size(); ++k)
+    {
+      std::uint64_t taken = 0;
+      for (const unsigned int i : cells_[k].local_dofs)
+        taken |= dof_colours[i];
+      unsigned int colour = 0;
+      while (colour < 64 && (taken >> colour & 1u))
+        ++colour;
+      if (colour == 64)
+        throw std::logic_error("explicit solver: more than 64 colours of cells (a DoF in more than 64 cells?)");
+      for (const unsigned int i : cells_[k].local_dofs)
+        dof_colours[i] |= std::uint64_t(1) << colour;
+      if (colour >= colours_.size())
+        colours_.resize(colour + 1);
+      colours_[colour].push_back(k);
+    }
 }
 
 void ExplicitSolver::assemble_internal_force(const Vector &displacement_increment)
@@ -348,34 +369,43 @@ void ExplicitSolver::assemble_internal_force(const Vector &displacement_incremen
   internal_force_ = 0.0;
   const unsigned int n_dofs = dof_component_.size();
   const unsigned int n_scalar = space_.fe().base_element(0).n_dofs_per_cell();
-  std::vector<double> increment(n_dofs);
-  std::vector<dealii::Tensor<1, dim>> cell_force(n_scalar); // per scalar shape, both components
-  for (const CellCache &c : cells_)
+  constexpr unsigned int max_scalar = 9; // Q2
+  AssertThrow(n_scalar <= max_scalar, dealii::ExcMessage("explicit solver: Q1 or Q2 elements only"));
+  // Colour by colour: a colour's cells share no DoF, so its threads write to distinct entries
+  // and each DoF sums its cells in colour order, whatever the number of threads.
+  for (const std::vector<unsigned int> &colour : colours_)
     {
-      for (unsigned int i = 0; i < n_dofs; ++i)
-        increment[i] = displacement_increment.local_element(c.local_dofs[i]);
-      std::fill(cell_force.begin(), cell_force.end(), dealii::Tensor<1, dim>());
-      for (unsigned int q = 0; q < c.points.size(); ++q)
+      const auto n_cells = static_cast<std::ptrdiff_t>(colour.size());
+#pragma omp parallel for schedule(static) num_threads(settings_.n_threads) if (settings_.n_threads > 1)
+      for (std::ptrdiff_t k = 0; k < n_cells; ++k)
         {
-          const dealii::Tensor<1, dim> *gradients = &c.gradients[q * n_scalar];
-          dealii::Tensor<2, dim> displacement_gradient;
+          const CellCache &c = cells_[colour[k]];
+          double increment[2 * max_scalar];
+          dealii::Tensor<1, dim> cell_force[max_scalar]; // per scalar shape, both components
           for (unsigned int i = 0; i < n_dofs; ++i)
-            for (unsigned int d = 0; d < dim; ++d)
-              displacement_gradient[dof_component_[i]][d] += increment[i] * gradients[dof_scalar_[i]][d];
-          // Explicit: every step is committed, so the update starts from the last step's stress.
-          MaterialPoint &point = *c.points[q];
-          const StressUpdate update = soil_.update(point.stress, dealii::symmetrize(displacement_gradient));
-          point.stress = point.trial_stress = update.stress;
-          point.plastic_strain += update.plastic_strain_increment;
-          point.trial_plastic_strain = point.plastic_strain;
-          point.region = point.trial_region = update.region;
-          // f_i = int sigma : sym(e_c x grad phi_j) = int (sigma grad phi_j)_c.
-          const dealii::SymmetricTensor<2, dim> in_plane_stress = in_plane_part(update.stress);
-          for (unsigned int j = 0; j < n_scalar; ++j)
-            cell_force[j] += (in_plane_stress * gradients[j]) * c.JxW[q];
+            increment[i] = displacement_increment.local_element(c.local_dofs[i]);
+          for (unsigned int q = 0; q < c.points.size(); ++q)
+            {
+              const dealii::Tensor<1, dim> *gradients = &c.gradients[q * n_scalar];
+              dealii::Tensor<2, dim> displacement_gradient;
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                for (unsigned int d = 0; d < dim; ++d)
+                  displacement_gradient[dof_component_[i]][d] += increment[i] * gradients[dof_scalar_[i]][d];
+              // Explicit: every step is committed, so the update starts from the last step's stress.
+              MaterialPoint &point = *c.points[q];
+              const StressUpdate update = soil_.update(point.stress, dealii::symmetrize(displacement_gradient));
+              point.stress = point.trial_stress = update.stress;
+              point.plastic_strain += update.plastic_strain_increment;
+              point.trial_plastic_strain = point.plastic_strain;
+              point.region = point.trial_region = update.region;
+              // f_i = int sigma : sym(e_c x grad phi_j) = int (sigma grad phi_j)_c.
+              const dealii::SymmetricTensor<2, dim> in_plane_stress = in_plane_part(update.stress);
+              for (unsigned int j = 0; j < n_scalar; ++j)
+                cell_force[j] += (in_plane_stress * gradients[j]) * c.JxW[q];
+            }
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            internal_force_.local_element(c.local_dofs[i]) += cell_force[dof_scalar_[i]][dof_component_[i]];
         }
-      for (unsigned int i = 0; i < n_dofs; ++i)
-        internal_force_.local_element(c.local_dofs[i]) += cell_force[dof_scalar_[i]][dof_component_[i]];
     }
   if (sheet_)
     sheet_->compute_forces(displacement_, material_points_, internal_force_);

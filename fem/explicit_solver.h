@@ -51,6 +51,9 @@ struct ExplicitSettings
   double safety_factor = 0.8;      ///< the stable step is this times dt_crit, in (0, 1] [-]
   double time_step = 0.0;          ///< [s]; 0 takes the stable step, a larger one is refused
   ExplicitDamping damping;
+  /// OpenMP threads over the cells' internal force; the same numbers on any count (the cells
+  /// are coloured: no two of a colour share a node, and each node sums its cells colour by colour).
+  unsigned int n_threads = 1;
 
   /// Throws std::invalid_argument naming `where` and the parameter.
   void validate(const std::string &where) const;
@@ -194,6 +197,8 @@ private:
   unsigned int n_steps_ = 0;
   std::unique_ptr<EmbeddedSheet> sheet_;
   std::vector<CellCache> cells_;
+  /// cells_ by colour: no two cells of a colour share a DoF (build_cell_cache, greedy in cell order).
+  std::vector<std::vector<unsigned int>> colours_;
   std::vector<unsigned int> dof_component_, dof_scalar_; ///< of each cell DoF: its component and scalar shape
   std::function<double(const dealii::Point<dim> &)> energy_weight_; ///< empty without coupling
 };
