@@ -113,7 +113,8 @@ struct TankFillingSpec
 
 /// The tank's walls: indices into DemSystem::walls(). The base spans [0, width] at y = 0, the
 /// side walls x = 0 and x = width; the lid, used while a layer grows, ends parked above the fill
-/// (it touches nothing).
+/// (it touches nothing). The lid never touches a sheet (Wall::touches_sheets): it only gauges a
+/// growing layer's jamming, which a held sheet standing through it must not load.
 struct TankWalls
 {
   std::size_t base, right, lid, left;
