@@ -89,9 +89,12 @@ void PullOutTankSpec::validate(const std::string &where) const
             " m with layers " + std::to_string(thickness) + " m thick)");
   if (geometry.anchorage == Anchorage::wrap_around)
     {
+      // The upper part is laid on the lift whose top is at its level (resolved_filling).
       const double top = (geometry.sheet_level() + geometry.return_height) / thickness;
-      require(std::ceil(top - 1e-6) < n, where, "Filling/number of layers", n,
-              "must leave at least one layer above the upper part of the sheet");
+      require(std::abs(top - std::round(top)) < 1e-6 && std::round(top) < n, where, "Filling/number of layers", n,
+              "must put a layer boundary at the level of the sheet's upper part (fill height - H + D1 = " +
+                std::to_string(geometry.sheet_level() + geometry.return_height) + " m with layers " +
+                std::to_string(thickness) + " m thick) and leave at least one layer above it");
     }
 }
 
@@ -116,12 +119,21 @@ TankFillingSpec PullOutTankSpec::resolved_filling() const
   t.wall_contact.bond_new_contacts = false;
 
   SheetLaying laying;
-  laying.layers_below = static_cast<std::size_t>(std::lround(geometry.sheet_level() / (t.height / t.n_layers)));
+  const double thickness = t.height / static_cast<double>(t.n_layers);
+  laying.layers_below = static_cast<std::size_t>(std::lround(geometry.sheet_level() / thickness));
   const PullOutGeometry g = geometry;
   const SheetParameters sheet_parameters = sheet;
   const double segment = max_segment_length;
+  const bool wrap = g.anchorage == Anchorage::wrap_around;
+  // A wrap-around is laid as in the laboratory, in two stages (tank_filling.h): the lower part on
+  // its lift with the return standing up from its end, held, through the lifts placed next; once
+  // the fill reaches the upper part's level (a layer boundary, validate()), the upper part is
+  // folded over that lift, levelled as the one under the lower part.
+  const double upper_level = g.sheet_level() + g.return_height; // nominal
+  if (wrap)
+    laying.second_part_layers_below = static_cast<std::size_t>(std::lround(upper_level / thickness));
   laying.slot_height = 0.0; // automatic: the sheet's thickness plus half the smallest grain
-  laying.lay = [g, sheet_parameters, segment](const DemSystem &settled) {
+  laying.lay = [g, sheet_parameters, segment, wrap, upper_level](const DemSystem &settled) {
     // The sheet rests on the highest grain under its lower part (it is laid on the lift).
     const ParticleSet &p = settled.particles();
     const double x_end = g.tank_length - g.anchorage_length;
@@ -131,16 +143,72 @@ TankFillingSpec PullOutTankSpec::resolved_filling() const
         surface = std::max(surface, p.disc_y[d] + p.disc_radius[d]);
     const double t = sheet_parameters.thickness;
     const double level = surface + 0.6 * t;
-    SparSheet chain("geosynthetic", subdivide_polyline(g.sheet_corners(level), segment), sheet_parameters);
+    std::vector<Vec2> corners = g.sheet_corners(level);
+    if (wrap)
+      {
+        // The return ends 0.6 t below the level of the lift its upper part will be laid on, where
+        // that lift's lid will be: clear of the lid (a node touches a wall within t / 2), so that
+        // the held end does not load the lid the lift's growth reads its jamming from. A disc of
+        // radius above 0.6 t under the lid cannot reach over the return's end, so the return can
+        // later be lengthened up to the upper part without cutting into it.
+        corners.pop_back();
+        corners.back().y() = upper_level - 0.6 * t;
+        if (!(corners.back().y() - level > t))
+          throw std::invalid_argument("pull-out tank: the return ('Anchorage/D1' = " + std::to_string(g.return_height) +
+                                      " m) is too short for the sheet laid at " + std::to_string(level) +
+                                      " m: its end would be " + std::to_string(corners.back().y() - level) +
+                                      " m above the lower part");
+      }
+    SparSheet chain("geosynthetic", subdivide_polyline(corners, segment), sheet_parameters);
     chain.set_mass_scaling(settled.required_sheet_mass_scaling(chain));
     chain.prescribe_velocity(0, Vec2::Zero()); // the clamp holds the sheet
-    // The return and the upper part of a wrap-around stand in the layers still to come: they
-    // are held in place until the tank is full, as the sheet is held while the lifts are placed.
+    // The return of a wrap-around stands in the layers still to come: it is held in place until
+    // the tank is full, as the sheet is held up while the lifts are placed round it.
     for (std::size_t k = 1; k < chain.n_nodes(); ++k)
       if (chain.y[k] > level + 0.5 * t)
         chain.prescribe_velocity(k, Vec2::Zero());
     return chain;
   };
+  if (wrap)
+    laying.lay_second_part = [g, segment](const DemSystem &settled, const SparSheet &laid) {
+      // The upper part rests on the highest grain under it, the lift being levelled as the
+      // lower part's; the return's end (held) is moved up to it along the return, and that
+      // segment is re-laid at its new length (the others keep theirs).
+      const ParticleSet &p = settled.particles();
+      const std::size_t end = laid.n_nodes() - 1;
+      const double x_end = laid.x[end], x_far = x_end + g.upper_length;
+      double surface = 0.0;
+      for (std::size_t d = 0; d < p.n_discs_total(); ++d)
+        if (p.disc_x[d] + p.disc_radius[d] >= x_end && p.disc_x[d] - p.disc_radius[d] <= x_far)
+          surface = std::max(surface, p.disc_y[d] + p.disc_radius[d]);
+      const double level = std::max(surface + 0.6 * laid.thickness(), laid.y[end]);
+      std::vector<Vec2> nodes;
+      for (std::size_t k = 0; k <= end; ++k)
+        nodes.push_back(laid.node(k));
+      nodes.back().y() = level;
+      const std::vector<Vec2> upper = subdivide_polyline({Vec2(x_end, level), Vec2(x_far, level)}, segment);
+      nodes.insert(nodes.end(), upper.begin() + 1, upper.end());
+      SparSheet chain(laid.name(), nodes, laid.parameters());
+      for (std::size_t k = 0; k + 1 < end; ++k)
+        chain.rest_length[k] = laid.rest_length[k];
+      chain.set_mass_scaling(settled.required_sheet_mass_scaling(chain));
+      // The laid nodes keep their motion and their holds (the clamp, the return). The upper part
+      // is held where it lies until the tank is full, as the return: free, its free end was
+      // pushed back along the lift by the grains of the next one growing round it, and the
+      // part crumpled (measured on the tank of tests/test_dem_wraparound_fill.cc: its last
+      // segment 3.4 mm long instead of 10 mm, the end 14 mm short of where it was laid). The
+      // lower part needs no hold: the clamp and the return keep it taut.
+      for (std::size_t k = 0; k <= end; ++k)
+        {
+          chain.vx[k] = laid.vx[k];
+          chain.vy[k] = laid.vy[k];
+          if (laid.is_kinematic(k))
+            chain.prescribe_velocity(k, Vec2(laid.vx[k], laid.vy[k]));
+        }
+      for (std::size_t k = end + 1; k < chain.n_nodes(); ++k)
+        chain.prescribe_velocity(k, Vec2::Zero());
+      return chain;
+    };
   t.sheet = laying;
   return t;
 }

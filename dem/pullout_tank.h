@@ -25,8 +25,12 @@
 //
 // Filling (tank_filling.h): layers up to the sheet level, the sheet laid on their surface, layers
 // above. The sheet therefore lies on the grains of the last lift below it, a little above the
-// nominal level (about one grain); its actual depth is reported. Walls have the wall friction
-// (28 degrees in the paper, measured) and the soil's stiffness.
+// nominal level (about one grain); its actual depth is reported. A wrap-around is laid in two
+// stages, as in the laboratory: the lower part on its lift with the return standing up from its
+// end, held, while the lifts up to the upper part's level are placed; then the upper part folded
+// over the lift at that level (levelled as the one under the lower part) and held, with the
+// return, until the tank is full. The layers must put a boundary at both levels. Walls have the
+// wall friction (28 degrees in the paper, measured) and the soil's stiffness.
 #include "checkpoint.h"
 #include "tank_filling.h"
 
@@ -84,7 +88,8 @@ struct PullOutTankSpec
   double max_segment_length = 0.01; ///< of the sheet's spars [m]
   /// The soil and the layers: width, height, density, wall contact and sheet are set from the
   /// geometry and unit_weight (the wall law is the soil's with the wall friction angle); the
-  /// number of layers must put a layer boundary at the sheet level.
+  /// number of layers must put a layer boundary at the sheet level (and, for a wrap-around, at
+  /// its upper part's, with a layer above it).
   TankFillingSpec filling;
   double unit_weight = 15.2e3;      ///< gamma of the soil at the fill's target porosity [N/m^3]
 

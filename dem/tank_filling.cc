@@ -145,6 +145,13 @@ TankWalls add_tank_walls(DemSystem &system, const TankFillingSpec &t, double lid
   system.walls()[walls.lid].loaded_length = w;
   system.walls()[walls.left].loaded_length = h;
   system.walls()[walls.right].loaded_length = slot ? slot_bottom : h;
+  // The lid is the growth's gauge (a lift is jammed when its grains press the lid beyond the
+  // growth stress), not a wall the sheet meets: a held part of a sheet standing through a lift's
+  // level (a wrap-around's return) must not load it. One did: in the particle box of
+  // examples/pullout_hybrid_wraparound_h040_b025.prm (lifts of 0.1 m, 3,667 clusters) a held
+  // node of the return lay 0.1 mm below the second lift's lid, pressed it with kn (t/2 - 0.1 mm)
+  // = 15 kN/m, 13.6 kPa over the box's 1.1 m, and the lift "jammed" at porosity 0.53 against 0.25.
+  system.walls()[walls.lid].touches_sheets = false;
   if (slot)
     {
       walls.right_upper = system.add_wall(Wall("right above the slot", Vec2(w, slot_top), Vec2(w, h + overhang), law));
@@ -186,6 +193,14 @@ void check_spec(const TankFillingSpec &t)
                                     " layers below it");
       if (!t.sheet->lay)
         throw std::invalid_argument("tank filling: the sheet has no function to lay it");
+      const std::size_t second = t.sheet->second_part_layers_below;
+      if (second != 0 && (second <= t.sheet->layers_below || second >= t.n_layers))
+        throw std::invalid_argument("tank filling: the sheet's second part is laid after " + std::to_string(second) +
+                                    " layers; it must have between " + std::to_string(t.sheet->layers_below + 1) +
+                                    " (above the first part's " + std::to_string(t.sheet->layers_below) + ") and " +
+                                    std::to_string(t.n_layers - 1) + " layers below it");
+      if (second != 0 && !t.sheet->lay_second_part)
+        throw std::invalid_argument("tank filling: the sheet's second part has no function to lay it");
     }
 }
 
@@ -249,6 +264,17 @@ void move_new_bodies_off_sheets(ParticleSet &p, std::size_t first_body, const st
   p.update_disc_positions(n_threads); // the same positions, computed as everywhere else
 }
 
+/// Throws unless every node of `sheet` but the first (the clamp, outside) lies in the tank.
+void check_nodes_in_tank(const SparSheet &sheet, const TankFillingSpec &t)
+{
+  const Vec2 clamp = sheet.node(0);
+  // Nodes between the clamp and the front wall are outside the tank too, in front of the slot.
+  for (std::size_t k = 1; k < sheet.n_nodes(); ++k)
+    if (!(sheet.x[k] > 0.0 && sheet.x[k] <= clamp.x() && sheet.y[k] > 0.0 && sheet.y[k] < t.height))
+      throw std::invalid_argument("tank filling: node " + std::to_string(k) + " of sheet '" + sheet.name() +
+                                  "' lies outside the tank");
+}
+
 /// The sheet of `laying`, made on the settled layers below it, checked against the tank, and the
 /// height of its slot.
 SparSheet lay_sheet(const SheetLaying &laying, const DemSystem &settled, const TankFillingSpec &t, double &slot_height)
@@ -259,11 +285,7 @@ SparSheet lay_sheet(const SheetLaying &laying, const DemSystem &settled, const T
     throw std::invalid_argument("tank filling: the first node of sheet '" + sheet.name() + "' (x = " +
                                 std::to_string(clamp.x()) + " m) must lie outside the front wall (x = " +
                                 std::to_string(t.width) + " m), where the clamp holds it");
-  // Nodes between the clamp and the front wall are outside the tank too, in front of the slot.
-  for (std::size_t k = 1; k < sheet.n_nodes(); ++k)
-    if (!(sheet.x[k] > 0.0 && sheet.x[k] <= clamp.x() && sheet.y[k] > 0.0 && sheet.y[k] < t.height))
-      throw std::invalid_argument("tank filling: node " + std::to_string(k) + " of sheet '" + sheet.name() +
-                                  "' lies outside the tank");
+  check_nodes_in_tank(sheet, t);
   const ParticleSet &p = settled.particles();
   const double smallest = 2.0 * *std::min_element(p.disc_radius.begin(), p.disc_radius.end());
   // The clamp holds the sheet at the slot's mid-height, so the slot leaves a gap of
@@ -282,6 +304,23 @@ SparSheet lay_sheet(const SheetLaying &laying, const DemSystem &settled, const T
                                 " m beside sheet '" + sheet.name() + "' (" + std::to_string(sheet.thickness()) +
                                 " m thick): it must be below the smallest grain's diameter (" + std::to_string(smallest) +
                                 " m), or the soil runs out through it");
+  return sheet;
+}
+
+/// The whole sheet of a two-stage `laying`, from `laid` (the sheet as it stands in the settled
+/// layers), checked: the clamp where it was (the slot was cut at its level), no node dropped,
+/// every node in the tank.
+SparSheet lay_second_part(const SheetLaying &laying, const DemSystem &settled, const SparSheet &laid,
+                          const TankFillingSpec &t)
+{
+  SparSheet sheet = laying.lay_second_part(settled, laid);
+  if (sheet.n_nodes() < laid.n_nodes())
+    throw std::invalid_argument("tank filling: laying the second part of sheet '" + laid.name() + "' dropped " +
+                                std::to_string(laid.n_nodes() - sheet.n_nodes()) + " of its nodes");
+  if (!(sheet.node(0) == laid.node(0)))
+    throw std::invalid_argument("tank filling: laying the second part of sheet '" + laid.name() +
+                                "' moved its clamp (node 0), which the front wall's slot was cut for");
+  check_nodes_in_tank(sheet, t);
   return sheet;
 }
 } // namespace
@@ -336,9 +375,11 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
   // stress on it 0.25 gamma H, and the lift above it grown down to a friction of 0.7 degrees
   // over 238,000 steps to make up for the hollows in its slab.) The sheet separates the two
   // lifts, so the band loosened along the lid is not filled from above: it is the loose band
-  // along the sheet, as on its other face.
+  // along the sheet, as on its other face. The lift a two-stage sheet's second part is laid on
+  // is levelled the same way (tank_filling.h).
   const auto has_band = [&](std::size_t k) {
-    return k + 1 < n_layers && !(t.sheet && k + 1 == t.sheet->layers_below);
+    return k + 1 < n_layers &&
+           !(t.sheet && (k + 1 == t.sheet->layers_below || k + 1 == t.sheet->second_part_layers_below));
   };
   // Particles in proportion to the space each layer fills: a layer with a band also fills it;
   // the next one fills from the top of that band.
@@ -357,6 +398,9 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
   const LinearContactLaw material(t.particle_contact);
   std::vector<TankLayer> layers;
   std::unique_ptr<DemSystem> settled; // the layers placed so far, settled under gravity
+  // The sheets laid so far as they stand in the settled layers: carried into the next layer's
+  // growth (a second part laid changes a sheet's nodes, which a system's sheets cannot).
+  std::vector<SparSheet> laid;
   TankWalls walls{};
   double slot_bottom = 0.0, slot_top = 0.0; // no slot until a sheet is laid
   for (std::size_t k = 0; k < n_layers; ++k)
@@ -389,8 +433,8 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
         {
           throw std::invalid_argument(where + e.what());
         }
-      if (settled && !settled->sheets().empty())
-        move_new_bodies_off_sheets(particles, first_body, settled->sheets(), t.n_threads);
+      if (!laid.empty())
+        move_new_bodies_off_sheets(particles, first_body, laid, t.n_threads);
       layer.first_body = first_body;
       layer.n_bodies = particles.n_bodies() - first_body;
       // While this layer grows, the grains below its slab are fixed (a compacted lift is nearly
@@ -407,8 +451,7 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
           }
         else
           free_below.push_back(b);
-      const double sheet_area =
-        settled ? sheet_area_in_slab(settled->sheets(), t.width, layer.bottom, layer.top) : 0.0;
+      const double sheet_area = sheet_area_in_slab(laid, t.width, layer.bottom, layer.top);
       std::vector<double> starting_area(layer.n_bodies);
       for (std::size_t i = 0; i < layer.n_bodies; ++i)
         starting_area[i] = particles.body_area(first_body + i);
@@ -417,9 +460,8 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
       DemSystem growing(std::move(particles), material, growth_settings);
       walls = add_tank_walls(growing, t, lid_level, slot_bottom, slot_top);
       // A sheet laid on the layers below stays where it lies while this layer grows round it.
-      if (settled)
-        for (const SparSheet &sheet : settled->sheets())
-          growing.add_sheet(sheet);
+      for (const SparSheet &sheet : laid)
+        growing.add_sheet(sheet);
       const GrowOnlyFrom grow_layer(growing.particles(), first_body);
       double area_factor = 1.0; // (size now / starting size)^2 of the growing particles
       RedfGrowth growth;
@@ -496,14 +538,16 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
             progress(done + share * (0.7 + 0.3 * std::min(1.0, static_cast<double>(layer.n_settling_steps) / 50000.0)));
         }
       layers.push_back(layer);
+      laid = settled->sheets();
       if (t.sheet && k + 1 == t.sheet->layers_below)
         {
           double slot_height = 0.0;
-          const SparSheet sheet = lay_sheet(*t.sheet, *settled, t, slot_height);
-          slot_bottom = sheet.y[0] - 0.5 * slot_height;
-          slot_top = sheet.y[0] + 0.5 * slot_height;
-          settled->add_sheet(sheet); // carried into the next layer's growth
+          laid.push_back(lay_sheet(*t.sheet, *settled, t, slot_height));
+          slot_bottom = laid.back().y[0] - 0.5 * slot_height;
+          slot_top = laid.back().y[0] + 0.5 * slot_height;
         }
+      if (t.sheet && k + 1 == t.sheet->second_part_layers_below)
+        laid.back() = lay_second_part(*t.sheet, *settled, laid.back(), t);
     }
   for (TankLayer &layer : layers)
     {

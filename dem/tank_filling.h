@@ -34,6 +34,18 @@
 // slot in the front wall (x = width), cut at the level of its first node (the clamp, outside the
 // tank) when it is laid: a gap between two wall segments, narrower than the grains (checked), so
 // that the sheet passes and the soil does not.
+//
+// A sheet may be laid in two stages, as a wrap-around is in the laboratory
+// (SheetLaying::second_part_layers_below): its lower part laid on its lift (with whatever of it
+// stands in the lifts to come, e.g. the return, held there), the lifts placed up to a higher
+// level, and the rest of the sheet (the upper part, folded over) laid on the lift at that level,
+// which is levelled as the first one is. Laid in one stage, a part held above the lift being
+// placed lay between that lift's grains and its lid, a band above: grains placed there were
+// pinched between the held sheet and the lid, whose stress then counted the lift jammed long
+// before its slab was dense (measured on a 1,400-cluster tank, lifts of 0.04 m, the upper part on
+// the third: the third lift jammed at porosity 0.53 against 0.25, a row of grains between the
+// sheet and the lid carrying 52 kPa on the lid; with the upper part on the second, the second
+// lift the same way at 0.51).
 #include "dem_system.h"
 #include "packing.h"
 
@@ -56,6 +68,15 @@ struct SheetLaying
   /// node must lie outside the front wall, x > width; make it kinematic (prescribe_velocity) to
   /// hold the sheet while the tank is filled.
   std::function<SparSheet(const DemSystem &settled)> lay;
+  /// Two-stage laying: the rest of the sheet is laid once this many layers have settled, in
+  /// [layers_below + 1, n_layers - 1]; its lift is levelled as the first one. 0 = the whole sheet
+  /// is laid at once.
+  std::size_t second_part_layers_below = 0;
+  /// Makes the whole sheet from the sheet laid so far, as it stands in the settled layers (its
+  /// nodes, their velocities and whether each is held), and the settled layers: that sheet's
+  /// nodes first (the clamp where it was; others may be moved along the sheet, e.g. a held
+  /// return's end to the level of the part laid now), then the new ones.
+  std::function<SparSheet(const DemSystem &settled, const SparSheet &laid)> lay_second_part;
 };
 
 struct TankFillingSpec
@@ -92,7 +113,8 @@ struct TankFillingSpec
 
 /// The tank's walls: indices into DemSystem::walls(). The base spans [0, width] at y = 0, the
 /// side walls x = 0 and x = width; the lid, used while a layer grows, ends parked above the fill
-/// (it touches nothing).
+/// (it touches nothing). The lid never touches a sheet (Wall::touches_sheets): it only gauges a
+/// growing layer's jamming, which a held sheet standing through it must not load.
 struct TankWalls
 {
   std::size_t base, right, lid, left;
@@ -127,7 +149,8 @@ struct FilledTank
 /// Fills the tank. `progress` (optional) is called now and then with a fraction in [0, 1].
 /// Throws std::invalid_argument for a spec that cannot work (no layer, a porosity outside
 /// [0.05, 0.8], layers too thin for their particles, a sheet laid outside [1, n_layers - 1] or whose
-/// first node is inside the tank, a slot narrower than the sheet or leaving a gap beside it wider than the smallest grain) and std::runtime_error when a layer cannot
+/// first node is inside the tank, a second part laid outside [layers_below + 1, n_layers - 1],
+/// without its function, or moving the clamp or dropping nodes, a slot narrower than the sheet or leaving a gap beside it wider than the smallest grain) and std::runtime_error when a layer cannot
 /// reach its porosity or the fill does not settle within max_steps_per_layer, naming the layer.
 FilledTank fill_tank_in_layers(const TankFillingSpec &spec, const std::function<void(double)> &progress = {});
 
