@@ -5,6 +5,7 @@
 //
 //   hybrid_bench --mode dem|hybrid [--margin M] [--seed S] [--particles N] [--displacement D]
 //                [--rate R] [--threads T] [--young E] [--scale-inertia 0|1] [--driven W]
+//                [--mohr-coulomb 0|1]
 //
 // The tank: 0.8 m x 0.3 m, a simple run-out L = 0.5 m at H = 0.15 m, grains of about 4 mm
 // (N = 12,000 two-disc clusters for the whole tank), the soft contacts of the DEM pull-out tests,
@@ -77,7 +78,7 @@ int main(int argc, char **argv)
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   std::string mode = "hybrid";
   double margin = 0.05, displacement = 0.005, rate = 0.02, young = 5e6, driven_below_weight = 0.1;
-  bool scale_inertia = true;
+  bool scale_inertia = true, mohr_coulomb = false;
   std::size_t particles = 12000;
   std::uint64_t seed = 1;
   int threads = 2;
@@ -100,6 +101,8 @@ int main(int argc, char **argv)
         threads = std::stoi(value);
       else if (key == "--scale-inertia")
         scale_inertia = value != "0";
+      else if (key == "--mohr-coulomb")
+        mohr_coulomb = value != "0";
       else if (key == "--driven")
         driven_below_weight = std::stod(value);
       else if (key == "--young")
@@ -141,7 +144,12 @@ int main(int argc, char **argv)
   spec.region.lift_thickness = 0.05;
   spec.region.scale_band_inertia = scale_inertia;
   spec.region.driven_below_weight = driven_below_weight;
-  spec.continuum.soil.kind = fem::SoilModelKind::linear_elastic;
+  // Linear elastic, or (--mohr-coulomb 1) Mohr-Coulomb phi = 30 deg, psi = 0, c = 0 (the
+  // pull-out inputs' kind, whose stress update costs more per point).
+  spec.continuum.soil.kind = mohr_coulomb ? fem::SoilModelKind::mohr_coulomb : fem::SoilModelKind::linear_elastic;
+  spec.continuum.soil.strength.friction_angle_deg = 30.0;
+  spec.continuum.soil.strength.dilatancy_angle_deg = 0.0;
+  spec.continuum.soil.strength.cohesion = 0.0;
   spec.continuum.soil.young_modulus = young;
   spec.continuum.soil.poisson_ratio = 0.3;
   coupling::HybridPullOut hybrid(spec, "hybrid_bench");

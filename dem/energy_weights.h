@@ -60,7 +60,12 @@ struct EnergyWeights
   /// The particles' share averaged along the branch from body i's centre to body j's.
   double contact_weight(std::size_t i, std::size_t j) const
   {
-    return 1.0 - mean_continuum_share(body_band_coordinate[i] / band_width, body_band_coordinate[j] / band_width);
+    const double s_i = body_band_coordinate[i], s_j = body_band_coordinate[j];
+    // Both ends on the DEM side of the band (most of a hybrid's contacts): the branch lies there
+    // too, the mean below is exactly 0; skipping it changes no bit.
+    if (s_i <= 0.0 && s_j <= 0.0)
+      return 1.0;
+    return 1.0 - mean_continuum_share(s_i / band_width, s_j / band_width);
   }
   /// The largest weight a contact of body b can have when its branch is at most `reach` long.
   double largest_contact_weight(std::size_t b, double reach) const

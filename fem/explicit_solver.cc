@@ -373,10 +373,13 @@ void ExplicitSolver::assemble_internal_force(const Vector &displacement_incremen
   AssertThrow(n_scalar <= max_scalar, dealii::ExcMessage("explicit solver: Q1 or Q2 elements only"));
   // Colour by colour: a colour's cells share no DoF, so its threads write to distinct entries
   // and each DoF sums its cells in colour order, whatever the number of threads.
+  // One parallel region for all colours (waking the threads costs more than a colour's cells
+  // on a small mesh); the loop's implicit barrier separates the colours.
+#pragma omp parallel num_threads(settings_.n_threads) if (settings_.n_threads > 1)
   for (const std::vector<unsigned int> &colour : colours_)
     {
       const auto n_cells = static_cast<std::ptrdiff_t>(colour.size());
-#pragma omp parallel for schedule(static) num_threads(settings_.n_threads) if (settings_.n_threads > 1)
+#pragma omp for schedule(static)
       for (std::ptrdiff_t k = 0; k < n_cells; ++k)
         {
           const CellCache &c = cells_[colour[k]];

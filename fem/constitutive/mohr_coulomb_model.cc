@@ -12,9 +12,16 @@ namespace
 /// The permutation that sorts the three principal values in decreasing order.
 std::array<unsigned int, 3> decreasing_order(const std::array<double, 3> &values)
 {
+  // Three compare-and-swaps (a sorting network; equal values keep their order, as the
+  // insertion sort std::sort used for three did): this runs at every point every explicit step.
   std::array<unsigned int, 3> order = {{0, 1, 2}};
-  std::sort(order.begin(), order.end(),
-            [&](unsigned int i, unsigned int j) { return values[i] > values[j]; });
+  const auto sort_pair = [&](unsigned int a, unsigned int b) {
+    if (values[order[b]] > values[order[a]])
+      std::swap(order[a], order[b]);
+  };
+  sort_pair(0, 1);
+  sort_pair(1, 2);
+  sort_pair(0, 1);
   return order;
 }
 } // namespace
@@ -37,7 +44,7 @@ MohrCoulombModel::MohrCoulombModel(const IsotropicElasticity &elasticity,
 
 double MohrCoulombModel::yield_function(const StressTensor &stress) const
 {
-  const auto values = principal_frame(stress).values;
+  const auto values = principal_values(stress);
   const double sigma_1 = *std::max_element(values.begin(), values.end());
   const double sigma_3 = *std::min_element(values.begin(), values.end());
   return main_normal_[0] * sigma_1 - sigma_3 - compressive_strength_;
@@ -48,9 +55,11 @@ StressUpdate MohrCoulombModel::update(const StressTensor &stress,
 {
   const auto strain_3d = embed_in_3d(strain_increment);
   const StressTensor trial = stress + elasticity_.stress(strain_3d);
-  const PlaneStrainPrincipalFrame frame = principal_frame(trial);
-  const auto order = decreasing_order(frame.values);
-  const Vector3 sorted_trial({frame.values[order[0]], frame.values[order[1]], frame.values[order[2]]});
+  // The principal directions (atan2, sin, cos) only once the point yields: most points of a
+  // pull-out stay elastic, and the explicit solver updates each of them every step.
+  const std::array<double, 3> values = principal_values(trial);
+  const auto order = decreasing_order(values);
+  const Vector3 sorted_trial({values[order[0]], values[order[1]], values[order[2]]});
 
   StressUpdate result;
   // The admissibility test is relative to the stress level so that a point that ended the last
@@ -65,6 +74,7 @@ StressUpdate MohrCoulombModel::update(const StressTensor &stress,
       return result;
     }
 
+  const PlaneStrainPrincipalFrame frame = principal_frame(trial);
   const PrincipalReturn principal = return_in_principal_space(sorted_trial);
   std::array<double, 3> returned_values;
   dealii::Tensor<2, 3> tangent_in_frame;

@@ -30,6 +30,9 @@ struct PlaneStrainPrincipalFrame
 };
 
 PlaneStrainPrincipalFrame principal_frame(const StressTensor &stress);
+/// principal_frame(stress).values without the directions (no atan2, sin, cos: the elastic check
+/// of a stress update needs only these).
+std::array<double, 3> principal_values(const StressTensor &stress);
 
 /// The stress with the frame's directions and the given principal values (slots as in the frame).
 StressTensor stress_from_principal(const PlaneStrainPrincipalFrame &frame,
