@@ -186,6 +186,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   summary.set("particle_time_step_s", s.particle_time_step);
   summary.set("n_fill_steps", static_cast<double>(s.fill_steps));
   summary.set("n_settling_steps", static_cast<double>(s.settling_steps));
+  summary.set("n_pull_steps", static_cast<double>(hybrid->pull_steps()));
   summary.set("settled_unbalanced_ratio", s.settled_unbalanced_ratio);
   summary.set("n_curve_points", static_cast<double>(n_points));
   summary.set("fill_wall_time_s", fill_time);

@@ -334,6 +334,9 @@ std::vector<dem::PullPoint> HybridPullOut::pull(const dem::PullSpec &spec,
       if (record)
         record(point);
     },
-    [this] { stepper_->step(); });
+    [this] {
+      stepper_->step();
+      ++pull_steps_;
+    });
 }
 } // namespace geohybrid::coupling

@@ -139,6 +139,7 @@ public:
                                    const std::function<void(const dem::PullPoint &)> &record = {});
 
   const HybridSetUp &set_up() const { return set_up_; }
+  std::uint64_t pull_steps() const { return pull_steps_; } ///< coupled steps taken by pull()
   const ParticleBox &box() const { return box_; }
   const dem::PullOutTank &particles() const { return *tank_; }
   dem::DemSystem &particle_system() { return tank_->tank.system; }
@@ -154,5 +155,6 @@ private:
   std::unique_ptr<OverlapBand> band_;
   std::unique_ptr<CoupledStepper> stepper_;
   HybridSetUp set_up_;
+  std::uint64_t pull_steps_ = 0;
 };
 } // namespace geohybrid::coupling

@@ -113,6 +113,10 @@ TEST(PullOutHybridMode, WritesTheContractWithTheHybridKeys)
   EXPECT_GT(dt, 0.0);
   EXPECT_LE(dt, dt_particles * (1.0 + 1e-12));
   EXPECT_GT(summary_number(summary, "n_settling_steps"), 0.0);
+  // 1 mm at 5 mm/s: at least 0.2 s of coupled steps, and not much more (the start's ramp).
+  const double pulled_for = summary_number(summary, "n_pull_steps") * dt;
+  EXPECT_GE(pulled_for, 0.2 * (1.0 - 1e-9));
+  EXPECT_LT(pulled_for, 0.3);
   EXPECT_GT(summary_number(summary, "fill_wall_time_s"), 0.0);
   EXPECT_GE(summary_number(summary, "wall_time_s"), summary_number(summary, "fill_wall_time_s"));
   for (const char *key : {"experimental_T_max_kN_per_m", "T_max_difference_percent", "gamma_H_Pa",
