@@ -82,7 +82,6 @@ CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &c
   , band_geometry_(checked(continuum, band, method))
   , band_(weighted_band(particles, continuum, band, treatment))
   , tie_(make_tie(method, *band_, particles, continuum, band))
-  , band_inertia_scaled_(treatment.scale_inertia)
 {
   // The multipliers set the tied particles' translation (DemSystem::set_constrained_bodies):
   // it and the nodes they interpolate from are left out of the local and mass-proportional
@@ -141,7 +140,7 @@ void CoupledStepper::start()
   // it; scaling the band's rotational inertia 4 x more removed the divergence, so a rotational
   // mode of the tied discs, whose translation the multipliers hold, is underestimated. Not
   // derived: a measured margin, 0.8 (1.19 below the divergence).
-  if (band_inertia_scaled_)
+  if (particles.band_inertia_scaled())
     time_step_ *= scaled_band_step_fraction;
   particles.set_time_step(time_step_);
   continuum.set_time_step(time_step_);

@@ -111,7 +111,6 @@ private:
   std::variant<LagrangeTie, PenaltyTie, InterfaceWall> tie_;
   CouplingForceSums forces_;
   std::vector<Vec2> driven_tied_displacement_; ///< u(X) of each driven particle when tied [m]
-  bool band_inertia_scaled_ = false;
   double time_step_ = 0.0;
   /// The fraction of the estimated stable step taken with the band's inertia scaled (start()).
   static constexpr double scaled_band_step_fraction = 0.8;

@@ -204,6 +204,7 @@ public:
   /// std::logic_error without weights, or if called twice. An automatic time step is raised
   /// back to the new critical step.
   double scale_band_inertia();
+  bool band_inertia_scaled() const { return !inertia_scale_.empty(); }
   /// nullptr without weights.
   const EnergyWeights *energy_weights() const { return weighted_ ? &energy_weights_ : nullptr; }
 

@@ -99,6 +99,20 @@ public:
 private:
   double pressure_, width_;
 };
+/// The layer's mesh: `nx_q1` x nx_q1 / 2 Q1 cells, or half as many Q2 cells (the same nodes).
+void make_layer_mesh(Mesh &mesh, const Layer &layer, unsigned int degree, unsigned int nx_q1)
+{
+  const unsigned int nx = degree == 1 ? nx_q1 : nx_q1 / 2;
+  make_rectangle(mesh, nx, nx / 2, Point<dim>(0, 0), Point<dim>(layer.width, layer.height));
+}
+
+/// The layer's supports with `pressure` on the top face over x < 0.5 m [Pa].
+BoundaryConditions strip_loaded_layer(const Layer &layer, double pressure)
+{
+  BoundaryConditions bc = layer.supports();
+  bc.pressures = {{top, std::make_shared<StripPressure>(pressure, 0.5)}};
+  return bc;
+}
 } // namespace
 
 // Central differences with a lumped mass on a bar (nu = 0 in plane strain: the P-wave modulus is E)
@@ -322,10 +336,8 @@ TEST(ExplicitSolver, DampedRunReachesTheImplicitStaticSolution)
     {
       const Layer layer;
       Mesh mesh(MPI_COMM_WORLD);
-      make_rectangle(mesh, degree == 1 ? 16 : 8, degree == 1 ? 8 : 4, Point<dim>(0, 0),
-                     Point<dim>(layer.width, layer.height));
-      BoundaryConditions bc = layer.supports();
-      bc.pressures = {{top, std::make_shared<StripPressure>(50e3, 0.5)}};
+      make_layer_mesh(mesh, layer, degree, 16);
+      const BoundaryConditions bc = strip_loaded_layer(layer, 50e3);
       const SoilModel soil = elastic_soil(layer.E, layer.nu);
 
       QuasiStaticSettings implicit_settings = layer.settings(degree);
@@ -374,10 +386,8 @@ TEST(ExplicitSolver, TwoThreadsGiveTheSameBitsAsOne)
     {
       const Layer layer;
       Mesh mesh(MPI_COMM_WORLD);
-      make_rectangle(mesh, degree == 1 ? 24 : 12, degree == 1 ? 12 : 6, Point<dim>(0, 0),
-                     Point<dim>(layer.width, layer.height));
-      BoundaryConditions bc = layer.supports();
-      bc.pressures = {{top, std::make_shared<StripPressure>(400e3, 0.5)}};
+      make_layer_mesh(mesh, layer, degree, 24);
+      const BoundaryConditions bc = strip_loaded_layer(layer, 400e3);
       const SoilModel soil = mohr_coulomb_soil(30.0, 5e3, 0.0, layer.E, layer.nu);
       std::vector<ExplicitSolver::Vector> displacements;
       std::vector<double> plastic;
