@@ -161,8 +161,27 @@ const BandParticles &CoupledStepper::band_particles() const
   return *band_;
 }
 
+void CoupledStepper::cross_sheet(std::size_t dem_sheet_index, double rest_length)
+{
+  if (crossing_)
+    throw std::logic_error("coupled stepper: the sheet already crosses into the continuum");
+  fem::EmbeddedSheet *continuum_sheet = continuum_.sheet();
+  if (!continuum_sheet)
+    throw std::invalid_argument("coupled stepper: the continuum has no sheet to join the particles' sheet to "
+                                "(ExplicitSolver::attach_sheet)");
+  dem::SparSheet &dem_sheet = particles_.sheets().at(dem_sheet_index);
+  crossing_.emplace(dem_sheet, dem_sheet_index, *continuum_sheet, rest_length);
+  // The forces at the current time: the particles' are evaluated (start()), so the segment's
+  // force joins them directly; the continuum's sheet takes its share in its next step.
+  crossing_->apply(dem_sheet, *continuum_sheet);
+  particles_.set_sheet_force_hook([this](std::vector<dem::SparSheet> &sheets) {
+    crossing_->apply(sheets[crossing_->dem_sheet_index()], *continuum_.sheet());
+  });
+}
+
 CoupledStepper::~CoupledStepper()
 {
+  particles_.set_sheet_force_hook({});
   particles_.set_force_hook({});
   continuum_.set_undamped_dofs({});
   particles_.set_constrained_bodies({});
@@ -246,7 +265,8 @@ CouplingDiagnostics CoupledStepper::diagnostics() const
       d.continuum_kinetic += 0.5 * M.local_element(i) * v_now * v_now;
       d.continuum_elastic += 0.5 * u.local_element(i) * f_int.local_element(i);
     }
-  d.coupling_energy = std::visit([](const auto &tie) { return tie.energy(); }, tie_);
+  d.coupling_energy = std::visit([](const auto &tie) { return tie.energy(); }, tie_) +
+                      (crossing_ ? crossing_->energy() : 0.0);
   d.forces = forces_;
   return d;
 }

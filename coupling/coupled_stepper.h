@@ -35,6 +35,7 @@
 #include "coupling/interface_wall.h"
 #include "coupling/lagrange_tie.h"
 #include "coupling/penalty_tie.h"
+#include "coupling/sheet_crossing.h"
 #include "dem/dem_system.h"
 #include "fem/explicit_solver.h"
 
@@ -89,6 +90,17 @@ public:
   double time_step() const { return time_step_; }
   double time() const { return continuum_.time(); }
 
+  /// The sheet as one chain across both models (sheet_crossing.h): DEM sheet `dem_sheet_index`,
+  /// whose last node lies in the particles' core, is joined to the continuum's sheet
+  /// (ExplicitSolver::attach_sheet, its node 0 the next of the chain) by a segment of rest length
+  /// `rest_length` [m], evaluated from now on at every force evaluation of the particles. Its
+  /// forces at the current time are applied at once (the next half kick and continuum step use
+  /// them). Throws std::invalid_argument if the continuum has no sheet, or from SheetCrossing;
+  /// std::logic_error if called twice.
+  void cross_sheet(std::size_t dem_sheet_index, double rest_length);
+  /// nullptr unless cross_sheet() was called.
+  const SheetCrossing *sheet_crossing() const { return crossing_ ? &*crossing_ : nullptr; }
+
   /// Methods 1 and 2; throws std::logic_error for method 3 (no band).
   const BandParticles &band_particles() const;
   /// Method 3's interface; nullptr for methods 1 and 2.
@@ -110,6 +122,7 @@ private:
   std::optional<BandParticles> band_;        ///< methods 1 and 2
   std::variant<LagrangeTie, PenaltyTie, InterfaceWall> tie_;
   CouplingForceSums forces_;
+  std::optional<SheetCrossing> crossing_;
   std::vector<Vec2> driven_tied_displacement_; ///< u(X) of each driven particle when tied [m]
   double time_step_ = 0.0;
   /// The fraction of the estimated stable step taken with the band's inertia scaled (start()).

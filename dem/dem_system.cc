@@ -891,6 +891,8 @@ void DemSystem::compute_forces_and_kick_for()
         sheet.start_forces(settings_.gravity);
       compute_wall_forces();
       book_wall_work();
+      if (sheet_force_hook_)
+        sheet_force_hook_(sheets_);
       if (!sheets_.empty())
         compute_sheet_forces_and_kick(); // adds the disc-sheet forces to the bodies before their kick
       if (force_hook_)
@@ -1002,6 +1004,46 @@ bool DemSystem::sheet_contacts_stale(double disc_move, double wall_move) const
         return true;
     }
   return false;
+}
+
+namespace
+{
+/// Keeps the entries of the equally long arrays `arrays` where keep[q] is true, in order.
+template <typename... Arrays>
+void keep_entries(const std::vector<bool> &keep, Arrays &...arrays)
+{
+  const auto filter = [&keep](auto &array) {
+    std::size_t kept = 0;
+    for (std::size_t q = 0; q < keep.size(); ++q)
+      if (keep[q])
+        array[kept++] = array[q];
+    array.resize(kept);
+  };
+  (filter(arrays), ...);
+}
+} // namespace
+
+void DemSystem::cut_sheet(std::size_t s, std::size_t n_kept)
+{
+  SparSheet &sheet = sheets_.at(s);
+  sheet.keep_first_nodes(n_kept);
+  SheetContacts &c = sheet_contacts_.at(s);
+  std::vector<bool> keep(c.size());
+  for (std::size_t q = 0; q < c.size(); ++q)
+    keep[q] = c.segment[q] + 1 < n_kept;
+  keep_entries(keep, c.disc, c.segment, c.state);
+  c.resize_results();
+  for (SheetWallContacts &w : c.walls)
+    {
+      std::vector<bool> keep_node(w.size());
+      for (std::size_t q = 0; q < w.size(); ++q)
+        keep_node[q] = w.node[q] < n_kept;
+      keep_entries(keep_node, w.node, w.state);
+      w.resize_results();
+    }
+  c.node_x_at_rebuild.resize(n_kept);
+  c.node_y_at_rebuild.resize(n_kept);
+  request_neighbour_rebuild();
 }
 
 void DemSystem::kick_and_drift_sheets()

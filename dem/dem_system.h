@@ -166,6 +166,11 @@ public:
   /// The sheets: nodes may be given velocities (SparSheet::prescribe_velocity) between steps;
   /// moving nodes by hand needs request_neighbour_rebuild().
   std::vector<SparSheet> &sheets() { return sheets_; }
+  /// Cuts sheet `s` after its first `n_kept` nodes (SparSheet::keep_first_nodes): the contacts of
+  /// the dropped segments and nodes are forgotten, the others keep their state. For a coupling
+  /// that hands the sheet's tail to the continuum. Throws std::invalid_argument as
+  /// keep_first_nodes, or std::out_of_range for a sheet that does not exist.
+  void cut_sheet(std::size_t s, std::size_t n_kept);
   const std::vector<SparSheet> &sheets() const { return sheets_; }
   const std::vector<SheetContacts> &sheet_contacts() const { return sheet_contacts_; }
   /// The stiffest contact a sheet node can meet (the interfaces' and walls' kn and ks) [N/m/m].
@@ -217,6 +222,13 @@ public:
   /// books their work. An empty function (the default) costs one test per step.
   using ForceHook = std::function<void(ParticleSet &particles, double impulse_time)>;
   void set_force_hook(ForceHook hook) { force_hook_ = std::move(hook); }
+  /// A function called once per force evaluation, after the sheets' node forces are restarted
+  /// (weight and loads) and before their segments', contacts' and damping forces and their kick:
+  /// it may add forces to the sheets' nodes (fx, fy), as the segment that joins a sheet to the
+  /// rest of its chain in a continuum does (coupling/sheet_crossing.h). The nodes are at the new
+  /// positions. Not in the energy budget: the caller books the work.
+  using SheetForceHook = std::function<void(std::vector<SparSheet> &sheets)>;
+  void set_sheet_force_hook(SheetForceHook hook) { sheet_force_hook_ = std::move(hook); }
 
   /// Bodies whose translation a coupling's constraint sets (the bridging domain's tied
   /// particles, coupling/lagrange_tie.h: their velocity is the continuum's). Local damping leaves
@@ -313,6 +325,7 @@ private:
   /// `largest_radius`: the largest disc's).
   double largest_contact_weight(std::size_t b, double largest_radius) const;
   ForceHook force_hook_;
+  SheetForceHook sheet_force_hook_;
   double first_step_ = 0.0; ///< the step initialise_forces() prepares (its own step length is 0)
 };
 

@@ -117,6 +117,18 @@ void SparSheet::set_load(std::size_t k, const Vec2 &load)
   load_y[k] = load.y();
 }
 
+void SparSheet::keep_first_nodes(std::size_t n_kept)
+{
+  if (n_kept < 2 || n_kept > n_nodes())
+    throw std::invalid_argument("sheet '" + name_ + "': cannot keep " + std::to_string(n_kept) + " of its " +
+                                std::to_string(n_nodes()) + " nodes (at least 2)");
+  for (auto *v : {&x, &y, &vx, &vy, &fx, &fy, &mass, &inverse_mass, &gravitational_mass, &damping_fx, &damping_fy,
+                  &reaction_x, &reaction_y, &load_x, &load_y})
+    v->resize(n_kept);
+  rest_length.resize(n_kept - 1);
+  tension.resize(n_kept - 1);
+}
+
 void SparSheet::set_mass_scaling(double factor)
 {
   require(factor >= 1.0 && std::isfinite(factor), "sheet '" + name_ + "'", "mass scaling", factor,

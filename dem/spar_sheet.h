@@ -94,6 +94,12 @@ public:
   /// Node k carries the external force `load` from now on [N/m] (zero by default).
   void set_load(std::size_t k, const Vec2 &load);
 
+  /// Keeps nodes [0, n_kept) and the segments between them, with their state; the nodes past
+  /// them are dropped (a coupling takes them over: coupling/sheet_crossing.h). The new last node
+  /// keeps its mass, half of which is the dropped segment's: the coupling's segment that replaces
+  /// it. Throws std::invalid_argument unless 2 <= n_kept <= n_nodes().
+  void keep_first_nodes(std::size_t n_kept);
+
   /// Sets the factor on the inertial masses (>= 1); kinematic nodes stay kinematic.
   void set_mass_scaling(double factor);
   /// Largest stable step of the node dynamics, sqrt(m / k) over the free nodes with k the sum of

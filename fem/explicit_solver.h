@@ -87,6 +87,7 @@ public:
   /// lies outside the mesh. Collective.
   void attach_sheet(const TrussSheet &sheet, std::vector<SheetClamp> clamps);
   const EmbeddedSheet *sheet() const { return sheet_.get(); } ///< nullptr without a sheet
+  EmbeddedSheet *sheet() { return sheet_.get(); }             ///< nullptr without a sheet
 
   /// Bridging-domain energy weight of the continuum (Xiao & Belytschko 2004; coupling/): the
   /// continuum carries the share w(x) in [0, 1] of the energy where it overlaps a particle region,

@@ -304,6 +304,8 @@ EmbeddedSheet::EmbeddedSheet(const DisplacementSpace &space, const TrussSheet &s
   displacement_.assign(n, Force());
   velocity_.assign(n, Force());
   truss_force_.assign(n, Force());
+  node_load_.assign(n, Force());
+  added_mass_.assign(n, 0.0);
   interface_force_.assign(n, Force());
   shear_stress_.assign(n, 0.0);
   shared_.assign(5 * n, 0.0);
@@ -389,7 +391,7 @@ double EmbeddedSheet::stable_time_step() const
         stiffness += p.axial_stiffness / sheet_.rest_length(k - 1);
       if (k + 1 < sheet_.n_nodes())
         stiffness += p.axial_stiffness / sheet_.rest_length(k);
-      smallest = std::min(smallest, 2.0 / std::sqrt(2.0 * stiffness / sheet_.node_mass(k)));
+      smallest = std::min(smallest, 2.0 / std::sqrt(2.0 * stiffness / node_mass(k)));
     }
   return smallest;
 }
@@ -464,10 +466,10 @@ void EmbeddedSheet::advance(double dt, double previous_dt, double mass_proportio
     {
       if (clamped_[k])
         continue;
-      const double m = sheet_.node_mass(k);
+      const double m = node_mass(k);
       for (unsigned int c = 0; c < dim; ++c)
         {
-          double force = truss_force_[k][c] + interface_force_[k][c];
+          double force = truss_force_[k][c] + interface_force_[k][c] + node_load_[k][c];
           const double v = velocity_[k][c];
           const double v_now = v + 0.5 * previous_dt * force / m; // as in ExplicitSolver::take_step
           if (local_damping > 0.0 && v_now != 0.0)
@@ -477,12 +479,21 @@ void EmbeddedSheet::advance(double dt, double previous_dt, double mass_proportio
         }
       displacement_[k] += dt * velocity_[k];
     }
+  std::fill(node_load_.begin(), node_load_.end(), Force());
   for (const auto &c : clamps_)
     {
       const Force d = c.displacement(new_time);
       velocity_[c.node] = (d - displacement_[c.node]) / dt;
       displacement_[c.node] = d;
     }
+}
+
+void EmbeddedSheet::add_node_mass(std::size_t k, double mass)
+{
+  if (!(mass >= 0.0) || !std::isfinite(mass))
+    throw std::invalid_argument("sheet: an added node mass must be non-negative and finite, got " +
+                                std::to_string(mass) + " kg/m");
+  added_mass_.at(k) += mass;
 }
 
 EmbeddedSheet::Force EmbeddedSheet::interface_resultant() const

@@ -142,6 +142,17 @@ public:
   void advance(double dt, double previous_dt, double mass_proportional_damping, double local_damping,
                double new_time);
 
+  /// Adds `force` [N/m] to node k for the next advance() only: a coupling's force, the segment
+  /// that joins this sheet to the rest of its chain in another model (coupling/sheet_crossing.h).
+  void add_node_load(std::size_t k, const Force &force) { node_load_.at(k) += force; }
+  /// Adds `mass` [kg/m] to node k's inertial mass from now on: half of that joining segment's.
+  /// Throws std::invalid_argument for a negative or non-finite mass.
+  void add_node_mass(std::size_t k, double mass);
+  /// Node k's inertial mass: the truss's (TrussSheet::node_mass) and what was added [kg/m].
+  double node_mass(std::size_t k) const { return sheet_.node_mass(k) + added_mass_.at(k); }
+  /// The node's current position X_k + u_k [m].
+  dealii::Point<dim> node_position(std::size_t k) const { return sheet_.node(k) + displacement_.at(k); }
+
   const std::vector<Force> &displacements() const { return displacement_; } ///< [m]
   std::vector<double> axial_forces() const { return sheet_.axial_forces(displacement_); } ///< [N/m]
   /// The force clamp `c` applies to its node to hold it, inertia neglected [N/m].
@@ -173,6 +184,8 @@ private:
   std::vector<SlidingSoilPoint> soil_points_;
   std::vector<unsigned int> components_; ///< of each cell DoF
   std::vector<Force> displacement_, velocity_, truss_force_, interface_force_;
+  std::vector<Force> node_load_;   ///< add_node_load, for the next advance only
+  std::vector<double> added_mass_; ///< add_node_mass
   std::vector<double> shear_stress_; ///< tau per face (shared)
   std::vector<double> shared_;       ///< the per-step MPI sum's buffer
 };
