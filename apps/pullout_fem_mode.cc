@@ -80,13 +80,13 @@ void declare_continuum_parameters(ParameterHandler &prm)
   prm.declare_entry("safety factor", "0.8", Patterns::Double(0.01, 1.0),
                     "fem mode only: the time step over the soil's critical step [-]");
   prm.declare_entry("interface cohesion", "0", Patterns::Double(0.0, 1e9),
-                    "fem mode only: c_i of the sheet's interface, tau <= c_i + sigma_n tan(delta) with delta "
+                    "fem mode, and hybrid mode's sheet past the DEM region: c_i of the sheet's interface, tau <= c_i + sigma_n tan(delta) with delta "
                     "'Sheet/Interface/friction angle' (the other Sheet/Interface entries are the DEM's) [Pa]");
   prm.declare_entry("interface normal stiffness", "1e8", Patterns::Double(1.0, 1e14),
-                    "fem mode only: the penalty tying each face of the sheet to the soil (keep it below about E / "
+                    "fem mode, and hybrid mode's sheet past the DEM region: the penalty tying each face of the sheet to the soil (keep it below about E / "
                     "cell size) [Pa/m]");
   prm.declare_entry("interface shear stiffness", "1e8", Patterns::Double(1.0, 1e14),
-                    "fem mode only: the interface's elastic slip stiffness per face before sliding [Pa/m]");
+                    "fem mode, and hybrid mode's sheet past the DEM region: the interface's elastic slip stiffness per face before sliding [Pa/m]");
   prm.declare_entry("sheet mass scaling", "0", Patterns::Double(0.0, 1e12),
                     "fem mode only: factor on the sheet nodes' inertial mass, at least 1; 0 takes 8 times the "
                     "smallest that keeps them stable at the soil's step [-]");

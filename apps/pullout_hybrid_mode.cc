@@ -31,6 +31,16 @@ void declare_hybrid_parameters(ParameterHandler &prm)
                     "hybrid mode: the particle box reaches this far beyond the sheet below it, above it (above a "
                     "wrap-around's upper part) and behind its far end, clipped to the tank; it must exceed the band "
                     "and a pad of one branch length by a branch, and leave some continuum [m]");
+  prm.declare_entry("DEM region length", number(region.dem_region_length), Patterns::Double(),
+                    "hybrid mode: 0 puts the whole sheet in the particles; a length shorter than the lower part "
+                    "'Anchorage/L' makes the particle box only that long behind the front wall: the sheet crosses into "
+                    "the continuum at the particles' core edge, and its rest (a wrap-around's return and upper part "
+                    "too) is held by the continuum's interface ('Continuum/interface ...', friction angle "
+                    "'Sheet/Interface/friction angle') [m]");
+  prm.declare_entry("continuum interface friction angle", "0", Patterns::Double(),
+                    "hybrid mode, DEM region length > 0: delta of the sheet's interface in the continuum; 0 takes "
+                    "'Sheet/Interface/friction angle', the grains' contact angle, which is above the angle the DEM's "
+                    "sheet mobilises (calibrate it on a DEM pull-out: tan delta = T_max / (2 sigma_v L)) [deg]");
   prm.declare_entry("lift thickness", number(region.lift_thickness), Patterns::Double(),
                     "hybrid mode: the particle box is filled in lifts at most this thick (its own lifts: 'Filling/"
                     "number of layers' is then only checked for the whole tank, as in dem mode); the fill refuses grains "
@@ -72,6 +82,8 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
   coupling::HybridRegionSpec &r = spec.region;
   prm.enter_subsection("Hybrid");
   r.margin = prm.get_double("DEM region margin");
+  r.dem_region_length = prm.get_double("DEM region length");
+  spec.continuum.sheet_interface_friction_deg = prm.get_double("continuum interface friction angle");
   r.lift_thickness = prm.get_double("lift thickness");
   r.band_width = prm.get_double("band width");
   r.cell_size = prm.get_double("cell size");
@@ -87,6 +99,11 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
   spec.continuum.soil = soil.soil;
   spec.continuum.k0 = soil.k0;
   spec.continuum.local_damping = soil.local_damping;
+  prm.enter_subsection("Continuum");
+  spec.continuum.sheet_interface.cohesion = prm.get_double("interface cohesion");
+  spec.continuum.sheet_interface.normal_stiffness = prm.get_double("interface normal stiffness");
+  spec.continuum.sheet_interface.shear_stiffness = prm.get_double("interface shear stiffness");
+  prm.leave_subsection();
   spec.validate(where);
   return spec;
 }
@@ -144,7 +161,13 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   std::cout << "pullout: box filled in " << number(fill_time, 4) << " s (" << s.n_particles << " particles, "
             << s.fill_steps << " steps); " << s.n_cells << " continuum cells of " << number(s.cell_size, 3)
             << " m, band " << number(s.band_width, 3) << " m (" << s.n_tied << " particles tied, " << s.n_driven
-            << " driven); settled together in " << s.settling_steps << " steps (unbalanced ratio "
+            << " driven); "
+            << (s.n_sheet_nodes_continuum > 0
+                  ? "the sheet crosses into the continuum at x = " + number(s.crossing_x, 4) + " m (" +
+                      std::to_string(s.n_sheet_nodes_particles) + " nodes in the particles, " +
+                      std::to_string(s.n_sheet_nodes_continuum) + " in the continuum); "
+                  : std::string())
+            << "settled together in " << s.settling_steps << " steps (unbalanced ratio "
             << number(s.settled_unbalanced_ratio, 3) << "), set-up " << number(set_up_time, 4)
             << " s; time step " << number(s.time_step, 4) << " s (the particles' own " << number(s.particle_time_step, 4)
             << " s); sheet at y = " << number(sheet_level, 4) << " m (H = " << number(actual_cover, 4)
@@ -179,6 +202,11 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   summary.set("DEM_region", std::vector<double>{box.x0, box.y0, box.x1, box.y1});
   summary.set("n_tied_particles", static_cast<double>(s.n_tied));
   summary.set("n_driven_particles", static_cast<double>(s.n_driven));
+  summary.set("DEM_region_length_m", spec.region.dem_region_length);
+  summary.set("sheet_nodes_in_particles", static_cast<double>(s.n_sheet_nodes_particles));
+  summary.set("sheet_nodes_in_continuum", static_cast<double>(s.n_sheet_nodes_continuum));
+  if (s.n_sheet_nodes_continuum > 0)
+    summary.set("sheet_crossing_x_m", s.crossing_x);
   summary.set("soil_model", fem::to_string(spec.continuum.soil.kind));
   set_dem_sheet_summary(summary, hybrid->particle_system().sheets()[0], sheet_level, actual_cover, gamma_H, before,
                         before.top_face * g.anchorage_length * mu);

@@ -5,7 +5,7 @@
 //
 //   hybrid_bench --mode dem|hybrid [--margin M] [--seed S] [--particles N] [--displacement D]
 //                [--rate R] [--threads T] [--young E] [--scale-inertia 0|1] [--driven W]
-//                [--mohr-coulomb 0|1]
+//                [--mohr-coulomb 0|1] [--dem-length L] [--interface-friction DEG]
 //
 // The tank: 0.8 m x 0.3 m, a simple run-out L = 0.5 m at H = 0.15 m, grains of about 4 mm
 // (N = 12,000 two-disc clusters for the whole tank), the soft contacts of the DEM pull-out tests,
@@ -77,7 +77,7 @@ int main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   std::string mode = "hybrid";
-  double margin = 0.05, displacement = 0.005, rate = 0.02, young = 5e6, driven_below_weight = 0.1;
+  double margin = 0.05, dem_length = 0.0, interface_friction = 0.0, displacement = 0.005, rate = 0.02, young = 5e6, driven_below_weight = 0.1;
   bool scale_inertia = true, mohr_coulomb = false;
   std::size_t particles = 12000;
   std::uint64_t seed = 1;
@@ -87,6 +87,10 @@ int main(int argc, char **argv)
       const std::string key = argv[k], value = argv[k + 1];
       if (key == "--mode")
         mode = value;
+      else if (key == "--interface-friction")
+        interface_friction = std::stod(value);
+      else if (key == "--dem-length")
+        dem_length = std::stod(value);
       else if (key == "--margin")
         margin = std::stod(value);
       else if (key == "--seed")
@@ -144,6 +148,8 @@ int main(int argc, char **argv)
   spec.region.lift_thickness = 0.05;
   spec.region.scale_band_inertia = scale_inertia;
   spec.region.driven_below_weight = driven_below_weight;
+  spec.region.dem_region_length = dem_length;
+  spec.continuum.sheet_interface_friction_deg = interface_friction;
   // Linear elastic, or (--mohr-coulomb 1) Mohr-Coulomb phi = 30 deg, psi = 0, c = 0 (the
   // pull-out inputs' kind, whose stress update costs more per point).
   spec.continuum.soil.kind = mohr_coulomb ? fem::SoilModelKind::mohr_coulomb : fem::SoilModelKind::linear_elastic;
@@ -161,10 +167,24 @@ int main(int argc, char **argv)
             << "\nn_tied=" << s.n_tied << "\nn_driven=" << s.n_driven << "\nbox=" << box.x0 << "," << box.y0 << ","
             << box.x1 << "," << box.y1 << "\nband_width_m=" << s.band_width << "\nsettling_steps=" << s.settling_steps
             << "\ntime_step_s=" << s.time_step << "\nparticle_time_step_s=" << s.particle_time_step
-            << "\nsetup_wall_s=" << setup << std::endl;
+            << "\ndem_region_length_m=" << dem_length << "\nsheet_nodes_continuum=" << s.n_sheet_nodes_continuum
+            << "\ncrossing_x_m=" << s.crossing_x << "\nsetup_wall_s=" << setup << std::endl;
   const auto pull_start = std::chrono::steady_clock::now();
   const std::vector<dem::PullPoint> curve = hybrid.pull(pull);
   std::cout << "pull_wall_s=" << seconds_since(pull_start) << "\ntotal_wall_s=" << seconds_since(start) << "\n";
+  if (const coupling::SheetCrossing *crossing = hybrid.stepper().sheet_crossing())
+    std::cout << "crossing_tension_N_per_m=" << crossing->tension()
+              << "\ncontinuum_sheet_interface_x_N_per_m=" << hybrid.continuum().sheet()->interface_resultant()[0]
+              << "\ncontinuum_sheet_rest_lengths_m=" << [&] {
+                   std::string r;
+                   for (std::size_t k = 0; k < hybrid.continuum().sheet()->sheet().n_segments(); ++k)
+                     r += std::to_string(hybrid.continuum().sheet()->sheet().rest_length(k)) + ",";
+                   return r;
+                 }()
+              << "\ncontinuum_sheet_node_mass_kg_per_m=" << hybrid.continuum().sheet()->node_mass(1)
+              << "\nparticle_sheet_node_mass_kg_per_m=" << hybrid.particle_system().sheets()[0].mass[1]
+              << "\ncontinuum_sheet_first_node_displacement_m=" << hybrid.continuum().sheet()->displacements()[0][0]
+              << "\ncontinuum_sheet_last_node_displacement_m=" << hybrid.continuum().sheet()->displacements().back()[0] << "\n";
   report_curve(curve);
   return 0;
 }

@@ -65,6 +65,8 @@ void HybridRegionSpec::validate(const std::string &where) const
           "must be zero (automatic) or positive [m]");
   fem::require_parameter(far_cell_size >= 0.0 && std::isfinite(far_cell_size), where, "Hybrid/far cell size", far_cell_size,
           "must be zero (automatic) or positive [m]");
+  fem::require_parameter(dem_region_length >= 0.0 && std::isfinite(dem_region_length), where, "Hybrid/DEM region length",
+                         dem_region_length, "must be zero (the whole sheet in the particles) or positive [m]");
   fem::require_parameter(driven_below_weight >= 0.0 && driven_below_weight < 1.0, where, "Hybrid/driven below weight",
           driven_below_weight, "must lie in [0, 1) [-]");
   if (const auto *penalty = std::get_if<PenaltyCoupling>(&method))
@@ -81,8 +83,15 @@ void HybridPullOutSpec::validate(const std::string &where) const
 {
   tank.validate(where);
   region.validate(where);
+  fem::require_parameter(region.dem_region_length < tank.geometry.anchorage_length, where, "Hybrid/DEM region length",
+                         region.dem_region_length,
+                         "must be shorter than the lower part 'Anchorage/L' (the sheet then crosses into the "
+                         "continuum), or 0 (the whole sheet in the particles) [m]");
   fem::require_parameter(continuum.k0 >= 0.0 && std::isfinite(continuum.k0), where, "Continuum/K0", continuum.k0,
           "must be zero (the soil's 1 - sin phi) or positive [-]");
+  fem::require_parameter(continuum.sheet_interface_friction_deg >= 0.0 && continuum.sheet_interface_friction_deg < 90.0,
+                         where, "Hybrid/continuum interface friction angle", continuum.sheet_interface_friction_deg,
+                         "must lie in [0, 90): 0 takes 'Sheet/Interface/friction angle' [deg]");
   fem::require_parameter(continuum.local_damping >= 0.0 && continuum.local_damping < 1.0, where, "Continuum/local damping",
           continuum.local_damping, "must lie in [0, 1) [-]");
 }
@@ -93,7 +102,10 @@ ParticleBox particle_box(const HybridPullOutSpec &spec, const std::string &where
   const dem::PullOutGeometry &g = spec.tank.geometry;
   const double margin = spec.region.margin;
   const double sheet_level = g.sheet_level();
-  const bool wrap = g.anchorage == dem::Anchorage::wrap_around;
+  // A sheet that crosses into the continuum has only (part of) its lower part in the box: the box
+  // is a run-out's.
+  const bool crossing = spec.region.dem_region_length > 0.0;
+  const bool wrap = g.anchorage == dem::Anchorage::wrap_around && !crossing;
   const double rise = wrap ? g.return_height : 0.0; // from the lower part to the upper part
   ParticleBox box;
   // Below the sheet: `margin`, or down to the base; the lifts divide it evenly.
@@ -116,7 +128,8 @@ ParticleBox particle_box(const HybridPullOutSpec &spec, const std::string &where
                                 " m above the sheet, less than half the margin (lifts of " + std::to_string(lift) +
                                 " m): change the margin or 'Hybrid/lift thickness'");
   box.x1 = g.tank_length;
-  box.x0 = std::max(0.0, g.tank_length - g.anchorage_length - margin);
+  box.x0 = crossing ? g.tank_length - spec.region.dem_region_length
+                    : std::max(0.0, g.tank_length - g.anchorage_length - margin);
   box.left_shared = box.x0 > 1e-9;
   box.n_lifts = lifts_below + lifts_above;
   if (!box.left_shared && !box.bottom_shared && !box.top_shared)
@@ -134,6 +147,14 @@ ParticleBox particle_box(const HybridPullOutSpec &spec, const std::string &where
   t.geometry.cover = box.y1 - sheet_level;
   if (wrap)
     t.geometry.upper_cover = box.y1 - (sheet_level + rise);
+  if (crossing)
+    {
+      // The box's sheet: a run-out reaching two thicknesses from the box's back (its temporary
+      // wall, which a node touches within half a thickness), through the pad and the band that
+      // will be cut off to the continuum.
+      t.geometry.anchorage = dem::Anchorage::simple_run_out;
+      t.geometry.anchorage_length = t.geometry.tank_length - 2.0 * spec.tank.sheet.thickness;
+    }
   t.filling.n_layers = box.n_lifts;
   t.filling.n_particles = box.n_particles;
   if (!t.filling.layer_porosities.empty())
@@ -190,10 +211,56 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
                                 " m leaves no DEM core inside the pad and the band");
   band_ = std::make_unique<OverlapBand>(
     OverlapBand::around_convex_region({Vec2(cx0, cy0), Vec2(cx1, cy0), Vec2(cx1, cy1), Vec2(cx0, cy1)}, w));
-  // The sheet stays in the core, one branch clear of the band (its contacts are not weighted and
-  // the tied particles' ties must not touch it).
+  // Without a DEM region length the sheet stays in the core, one branch clear of the band (its
+  // contacts are not weighted and the tied particles' ties must not touch it). With one, it is
+  // cut at the core's edge and its rest goes to the continuum (below).
   const dem::SparSheet &sheet = particles.sheets().at(0);
-  for (std::size_t k = 0; k < sheet.n_nodes(); ++k)
+  const bool crossing = spec.region.dem_region_length > 0.0;
+  std::vector<dealii::Point<fem::dim>> continuum_sheet_nodes;
+  std::size_t n_kept = sheet.n_nodes();
+  double crossing_rest_length = 0.0;
+  if (crossing)
+    {
+      n_kept = 0;
+      while (n_kept < sheet.n_nodes() && band_->coordinate(sheet.node(n_kept)) <= 0.0)
+        ++n_kept;
+      if (n_kept < 2 || n_kept == sheet.n_nodes())
+        {
+          std::ostringstream message;
+          message << where << ": parameter 'Hybrid/DEM region length' = " << spec.region.dem_region_length
+                  << " m leaves " << n_kept << " of the sheet's " << sheet.n_nodes()
+                  << " nodes in the particles' core (its edge " << pad + w << " m from the box's back; the sheet "
+                  << "ends " << sheet.x[sheet.n_nodes() - 1] << " m from it): it must leave at least 2 in and 1 out";
+          throw std::invalid_argument(message.str());
+        }
+      // The continuum's part starts one segment (the DEM sheet's) past the last node in the core,
+      // straight towards the sheet's end as drawn, and follows the drawing from there (a wrap-
+      // around's return and upper part), at the level the sheet was laid at (the clamp's, which
+      // has not moved), in the box's frame. The laid nodes past the core are not used: the fill
+      // may have crumpled the end of the box's sheet against the box's back (tension-only spars).
+      crossing_rest_length = sheet.rest_length[n_kept - 1];
+      const Vec2 last_in_core = sheet.node(n_kept - 1);
+      std::vector<Vec2> drawn;
+      for (const Vec2 &corner : g.sheet_corners(sheet.y[0] + box_.y0))
+        drawn.push_back(corner - Vec2(box_.x0, box_.y0));
+      const Vec2 towards_end = (drawn[1] - last_in_core).normalized();
+      std::vector<Vec2> path{last_in_core + crossing_rest_length * towards_end};
+      path.insert(path.end(), drawn.begin() + 1, drawn.end());
+      for (const Vec2 &node : dem::subdivide_polyline(path, spec.tank.max_segment_length))
+        continuum_sheet_nodes.emplace_back(node.x(), node.y());
+      for (std::size_t k = 0; k < continuum_sheet_nodes.size(); ++k)
+        if (!(band_->coordinate(Vec2(continuum_sheet_nodes[k][0], continuum_sheet_nodes[k][1])) > 0.0))
+          {
+            std::ostringstream message;
+            message << where << ": parameter 'Hybrid/DEM region length' = " << spec.region.dem_region_length
+                    << " m: the sheet's part past the particles' core re-enters it (node at x = "
+                    << continuum_sheet_nodes[k][0] + box_.x0 << " m, y = " << continuum_sheet_nodes[k][1] + box_.y0
+                    << " m in the tank): a wrap-around's upper part must lie outside the particle box";
+            throw std::invalid_argument(message.str());
+          }
+      set_up_.crossing_x = sheet.x[n_kept - 1] + box_.x0;
+    }
+  for (std::size_t k = 0; !crossing && k < sheet.n_nodes(); ++k)
     {
       const double s = band_->coordinate(Vec2(sheet.x[k], sheet.y[k]));
       if (s > -pad)
@@ -279,6 +346,30 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
   geostatic.unit_weight = spec.tank.unit_weight;
   geostatic.k0 = spec.continuum.k0 > 0.0 ? spec.continuum.k0 : soil.default_k0();
   continuum_->set_initial_stress(geostatic);
+  if (crossing)
+    {
+      // The sheet's part in the continuum, its mass scaled as the particles' part is, or more if
+      // it is unstable at the particles' step, which the coupled step does not exceed (the
+      // continuum is set to that step: a heavier sheet, scaled for the continuum's own step,
+      // lagged behind the pull by its inertia); then the particles' part cut.
+      fem::TrussSheetParameters truss;
+      truss.axial_stiffness = spec.tank.sheet.axial_stiffness;
+      truss.areal_mass = spec.tank.sheet.areal_mass;
+      truss.interface = spec.continuum.sheet_interface;
+      truss.interface.friction_angle_deg = spec.continuum.sheet_interface_friction_deg > 0.0
+                                             ? spec.continuum.sheet_interface_friction_deg
+                                             : spec.tank.sheet.interface.friction_angle_deg;
+      const fem::EmbeddedSheet unscaled(continuum_->space(), fem::TrussSheet(continuum_sheet_nodes, truss, where), {},
+                                        where);
+      const double step = std::min(particles.time_step(), continuum_->time_step());
+      continuum_->set_time_step(step);
+      truss.mass_scaling =
+        std::max(sheet.parameters().mass_scaling, 1.25 * std::pow(step / unscaled.stable_time_step(), 2));
+      continuum_->attach_sheet(fem::TrussSheet(continuum_sheet_nodes, truss, where), {});
+      particles.cut_sheet(0, n_kept);
+      set_up_.n_sheet_nodes_particles = n_kept;
+      set_up_.n_sheet_nodes_continuum = continuum_sheet_nodes.size();
+    }
 
   // The temporary walls on the shared sides are parked away (the lid already is, above the
   // box); the driven particles that stood against them now hold the grains, moved by the continuum.
@@ -292,6 +383,8 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
   stepper_ = std::make_unique<CoupledStepper>(
     particles, *continuum_, *band_, spec.region.method,
     BandTreatment{spec.region.driven_below_weight, spec.region.scale_band_inertia});
+  if (crossing)
+    stepper_->cross_sheet(0, crossing_rest_length);
   set_up_.n_tied = stepper_->band_particles().size();
   set_up_.n_driven = stepper_->band_particles().driven_body.size();
   set_up_.time_step = stepper_->time_step();
@@ -302,8 +395,8 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
   const double target = spec.tank.filling.equilibrium_unbalanced_ratio;
   const fem::IsotropicElasticity &elasticity = soil.elasticity();
   const double p_wave_modulus = elasticity.lame_lambda() + 2.0 * elasticity.shear_modulus();
-  const double crossing = std::max(g.fill_height, g.tank_length) / std::sqrt(p_wave_modulus / settings.density);
-  const auto min_steps = static_cast<std::uint64_t>(10.0 * crossing / stepper_->time_step());
+  const double wave_crossing = std::max(g.fill_height, g.tank_length) / std::sqrt(p_wave_modulus / settings.density);
+  const auto min_steps = static_cast<std::uint64_t>(10.0 * wave_crossing / stepper_->time_step());
   for (;;)
     {
       stepper_->run_steps(500);

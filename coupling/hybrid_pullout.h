@@ -34,8 +34,15 @@
 //   particles' unbalanced-force ratio is below the fill's; then the clamp pulls the sheet as in
 //   the DEM pull-out (dem::PullOut, advanced by the coupled stepper).
 //
-// What is left out, on purpose or not yet: the sheet must lie in the DEM core (it does not cross
-// the band; `margin` is checked against that); wall contacts of the band's particles (at the front
+// - With a DEM region length (HybridRegionSpec::dem_region_length), the box is that long and
+//   the sheet laid in it reaches 2 segments from its back; after the fill the sheet is cut at the
+//   core's edge: the nodes past it (in the pad and the band) and the rest of the sheet as drawn
+//   (the lower part's tail; a wrap-around's return and upper part) become a truss sheet in the
+//   continuum, joined to the particles' part by one segment (sheet_crossing.h). The head
+//   tension is still the DEM clamp's.
+//
+// What is left out, on purpose or not yet: without a DEM region length the sheet must lie in the
+// DEM core, one branch clear of the band (`margin` is checked against that); wall contacts of the band's particles (at the front
 // wall, at the base) are not weighted (DemSystem::set_energy_weights); the continuum's walls are
 // smooth (the DEM's have the wall friction); one MPI rank; no checkpoints of the coupled run.
 #include "coupling/continuum_region.h"
@@ -44,6 +51,7 @@
 #include "coupling/overlap_band.h"
 #include "dem/pullout_tank.h"
 #include "fem/constitutive/soil_model.h"
+#include "fem/sheet_interface.h"
 #include "fem/explicit_solver.h"
 
 #include <deal.II/distributed/tria.h>
@@ -59,6 +67,12 @@ namespace geohybrid::coupling
 struct HybridRegionSpec
 {
   double margin = 0.1;           ///< from the sheet to the particle box's edge, below, above and behind it [m]
+  /// 0: the whole sheet lies in the particles' core (the box reaches `margin` behind its end).
+  /// Otherwise the particle box reaches only this far back from the front wall, shorter than the
+  /// lower part L: the sheet crosses into the continuum (sheet_crossing.h), its part in the core
+  /// touched by the grains, the rest (from the core's edge on) held by the continuum's
+  /// Mohr-Coulomb interface (HybridContinuumSpec::sheet_interface) [m].
+  double dem_region_length = 0.0;
   double lift_thickness = 0.05;  ///< the box's lifts are at most this thick [m]
   double band_width = 0.0;       ///< w; 0 = four mean grain sizes [m]
   double cell_size = 0.0;        ///< of the continuum's cells in the band and over the core's span; 0 = w / 2 [m]
@@ -82,6 +96,12 @@ struct HybridContinuumSpec
   fem::SoilParameters soil;
   double k0 = 0.0;             ///< sigma_h / sigma_v at rest; 0 takes the soil's default (1 - sin phi) [-]
   double local_damping = 0.7;  ///< the continuum's, as the grains' [-]
+  /// The interface of the sheet's part in the continuum (HybridRegionSpec::dem_region_length):
+  /// cohesion and penalty stiffnesses, and its friction angle if `sheet_interface_friction_deg`
+  /// is 0 is the tank's sheet interface's (the grains' contact angle, above the macroscopic angle
+  /// the DEM's sheet mobilises: calibrate it on a DEM pull-out, T / (2 sigma_v L)).
+  fem::SheetInterfaceParameters sheet_interface;
+  double sheet_interface_friction_deg = 0.0;
 };
 
 struct HybridPullOutSpec
@@ -118,6 +138,10 @@ struct HybridSetUp
   std::uint64_t fill_steps = 0, settling_steps = 0;
   double settled_unbalanced_ratio = 0.0;
   double time_step = 0.0;          ///< the coupled step [s]
+  /// The sheet's nodes in the particles' core and in the continuum (0 when it does not cross),
+  /// and where it crosses: x of the joining segment's DEM end, in the tank's frame [m].
+  std::size_t n_sheet_nodes_particles = 0, n_sheet_nodes_continuum = 0;
+  double crossing_x = 0.0;
   double particle_time_step = 0.0; ///< the particles' own step, before the coupling [s]
 };
 

@@ -148,4 +148,61 @@ TEST(HybridPullOut, SmallTankCarriesTheOverburdenThroughTheBandAndPulls)
   EXPECT_GT(T_max, one_face);
   EXPECT_LT(T_max, 4.0 * one_face);
 }
+
+// The sheet crossing into the continuum (HybridRegionSpec::dem_region_length): the box only
+// 0.15 m long, the sheet cut at the core's edge and its last 0.1 m and more held by the
+// continuum's interface. Each part's forces balance: the DEM part's head reaction is its contacts'
+// forces plus the joining segment's tension; the continuum part's interface holds that tension.
+TEST(HybridPullOut, SheetCrossesIntoTheContinuumAndEachPartBalances)
+{
+  HybridPullOutSpec spec = small_spec(LagrangeMultiplierCoupling{});
+  spec.region.dem_region_length = 0.15;
+  HybridPullOut hybrid(spec, "test");
+  const HybridSetUp &s = hybrid.set_up();
+  const ParticleBox &box = hybrid.box();
+  const double core_edge = box.x0 + s.pad + s.band_width; // in the tank's frame
+  const double segment = spec.tank.max_segment_length;
+  std::cout << "crossing at x = " << s.crossing_x << " m (core edge " << core_edge << " m); " << s.n_sheet_nodes_particles
+            << " sheet nodes in the particles, " << s.n_sheet_nodes_continuum << " in the continuum" << std::endl;
+  EXPECT_NEAR(box.x0, 0.25, 1e-12);
+  // The joining segment's DEM end is the last node in the core (x >= its edge), within a segment of it.
+  EXPECT_GE(s.crossing_x, core_edge - 1e-12);
+  EXPECT_LT(s.crossing_x, core_edge + 1.01 * segment);
+  ASSERT_NE(hybrid.stepper().sheet_crossing(), nullptr);
+  EXPECT_EQ(hybrid.particle_system().sheets()[0].n_nodes(), s.n_sheet_nodes_particles);
+  // The continuum's part runs from the core's edge to the sheet's end at x = 0.15 m.
+  const fem::EmbeddedSheet &continuum_sheet = *hybrid.continuum().sheet();
+  EXPECT_EQ(continuum_sheet.sheet().n_nodes(), s.n_sheet_nodes_continuum);
+  const double continuum_length = s.crossing_x - 0.15;
+  double drawn = 0.0;
+  for (std::size_t k = 0; k < continuum_sheet.sheet().n_segments(); ++k)
+    drawn += continuum_sheet.sheet().rest_length(k);
+  EXPECT_NEAR(drawn, continuum_length - hybrid.stepper().sheet_crossing()->rest_length(), 2e-3);
+
+  dem::PullSpec pull;
+  pull.rate = 0.005;
+  pull.final_displacement = 0.002;
+  pull.record_interval = 0.0005;
+  hybrid.pull(pull, [&](const dem::PullPoint &p) {
+    const SheetCrossing &crossing = *hybrid.stepper().sheet_crossing();
+    const dem::SparSheet &sheet = hybrid.particle_system().sheets()[0];
+    const std::size_t c = crossing.dem_node();
+    const dealii::Point<fem::dim> far = continuum_sheet.node_position(0);
+    const double e_x = (far[0] - sheet.x[c]) / std::hypot(far[0] - sheet.x[c], far[1] - sheet.y[c]);
+    const dem::HeadTensionParts parts = dem::head_tension_parts(hybrid.particle_system());
+    const double continuum_holds = -continuum_sheet.interface_resultant()[0];
+    std::cout << "u " << p.head_displacement << " m: T " << p.head_tension << " N/m (recorded), head reaction "
+              << parts.reaction << " N/m = DEM part " << parts.sum()
+              << " + joining segment " << -crossing.tension() * e_x << "; the continuum's interface holds "
+              << continuum_holds << " N/m" << std::endl;
+    if (p.head_displacement < 0.001)
+      return;
+    // The DEM part's balance is exact (the same force evaluation).
+    EXPECT_NEAR(parts.reaction, parts.sum() - crossing.tension() * e_x, 1e-6 * parts.reaction);
+    // The continuum part: its interface holds the joining tension, but for its inertia and
+    // damping (mass-scaled nodes).
+    EXPECT_GT(crossing.tension(), 0.0);
+    EXPECT_NEAR(continuum_holds, crossing.tension(), 0.15 * crossing.tension());
+  });
+}
 } // namespace
