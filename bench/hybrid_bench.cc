@@ -175,16 +175,14 @@ int main(int argc, char **argv)
   if (const coupling::SheetCrossing *crossing = hybrid.stepper().sheet_crossing())
     std::cout << "crossing_tension_N_per_m=" << crossing->tension()
               << "\ncontinuum_sheet_interface_x_N_per_m=" << hybrid.continuum().sheet()->interface_resultant()[0]
-              << "\ncontinuum_sheet_rest_lengths_m=" << [&] {
-                   std::string r;
-                   for (std::size_t k = 0; k < hybrid.continuum().sheet()->sheet().n_segments(); ++k)
-                     r += std::to_string(hybrid.continuum().sheet()->sheet().rest_length(k)) + ",";
-                   return r;
+              << "\ncontinuum_sheet_mean_sigma_nn_Pa=" << [&] {
+                   const fem::EmbeddedSheet &fe = *hybrid.continuum().sheet();
+                   double sum = 0.0;
+                   for (std::size_t k = 0; k < fe.sheet().n_nodes(); ++k)
+                     sum += fe.interface_normal_stress(k);
+                   return sum / fe.sheet().n_nodes();
                  }()
-              << "\ncontinuum_sheet_node_mass_kg_per_m=" << hybrid.continuum().sheet()->node_mass(1)
-              << "\nparticle_sheet_node_mass_kg_per_m=" << hybrid.particle_system().sheets()[0].mass[1]
-              << "\ncontinuum_sheet_first_node_displacement_m=" << hybrid.continuum().sheet()->displacements()[0][0]
-              << "\ncontinuum_sheet_last_node_displacement_m=" << hybrid.continuum().sheet()->displacements().back()[0] << "\n";
+              << "\n";
   report_curve(curve);
   return 0;
 }

@@ -308,7 +308,8 @@ EmbeddedSheet::EmbeddedSheet(const DisplacementSpace &space, const TrussSheet &s
   added_mass_.assign(n, 0.0);
   interface_force_.assign(n, Force());
   shear_stress_.assign(n, 0.0);
-  shared_.assign(5 * n, 0.0);
+  shared_.assign(6 * n, 0.0);
+  normal_stress_.assign(n, 0.0);
 
   const auto &fe = space_.fe();
   for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
@@ -402,7 +403,7 @@ void EmbeddedSheet::compute_forces(const Vector &soil_displacement, MaterialPoin
   const std::size_t n = sheet_.n_nodes();
   const SheetInterfaceLaw law(sheet_.parameters().interface);
   // Packed for one MPI sum: the interface force (2 per node), tau (1 per node), the soil point's
-  // new arc length and segment (1 and 1 per node); each from the node's owner, zero elsewhere.
+  // new arc length and segment (1 and 1 per node), sigma_nn (1 per node); each from the node's owner, zero elsewhere.
   std::fill(shared_.begin(), shared_.end(), 0.0);
   for (std::size_t k = 0; k < n; ++k)
     {
@@ -442,6 +443,7 @@ void EmbeddedSheet::compute_forces(const Vector &soil_displacement, MaterialPoin
       shared_[2 * n + k] = tau;
       shared_[3 * n + k] = foot.arc_length;
       shared_[4 * n + k] = foot.segment;
+      shared_[5 * n + k] = sigma_nn;
       // The soil feels -force at P(s_k): its internal force (f_int, resisting) gains +force N_i.
       for (unsigned int i = 0; i < p.dof_indices.size(); ++i)
         soil_internal_force[p.dof_indices[i]] += force[components_[i]] * p.shape_values[i];
@@ -451,6 +453,7 @@ void EmbeddedSheet::compute_forces(const Vector &soil_displacement, MaterialPoin
     {
       interface_force_[k] = Force({shared_[2 * k], shared_[2 * k + 1]});
       shear_stress_[k] = shared_[2 * n + k];
+      normal_stress_[k] = shared_[5 * n + k];
       // Every rank follows every node's point, with the same numbers: the owner may change.
       if (shared_[3 * n + k] != soil_points_[k].arc_length)
         move_soil_point(k, shared_[3 * n + k], static_cast<unsigned int>(shared_[4 * n + k]));

@@ -164,6 +164,8 @@ public:
   const Force &interface_force(std::size_t k) const { return interface_force_[k]; }
   /// Shear stress on each face at node k, last step [Pa].
   double interface_shear_stress(std::size_t k) const { return shear_stress_[k]; }
+  /// The soil's sigma_nn at node k's soil point (tension positive) that its Coulomb limit used, last step [Pa].
+  double interface_normal_stress(std::size_t k) const { return normal_stress_[k]; }
   /// The arc length on the reference path of the soil point node k has slid to [m].
   double soil_point_arc_length(std::size_t k) const { return soil_points_[k].arc_length; }
   const SheetPath &reference_path() const { return path_; }
@@ -187,6 +189,7 @@ private:
   std::vector<Force> node_load_;   ///< add_node_load, for the next advance only
   std::vector<double> added_mass_; ///< add_node_mass
   std::vector<double> shear_stress_; ///< tau per face (shared)
+  std::vector<double> normal_stress_; ///< sigma_nn per node (shared)
   std::vector<double> shared_;       ///< the per-step MPI sum's buffer
 };
 } // namespace geohybrid::fem
