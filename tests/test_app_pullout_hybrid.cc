@@ -125,6 +125,27 @@ TEST(PullOutHybridMode, WritesTheContractWithTheHybridKeys)
   fs::remove_all(d);
 }
 
+// The sheet crossing into the continuum from the input: 0.15 m of the 0.25 m sheet in the
+// particles, the rest in the continuum (about 25 s of CPU).
+TEST(PullOutHybridMode, SheetCrossesIntoTheContinuumFromTheInput)
+{
+  const fs::path d = test_directory();
+  ASSERT_EQ(error_of(write_input(d, "subsection Hybrid\n  set DEM region length = 0.15\n"
+                                    "  set continuum interface friction angle = 20\nend\n")),
+            "");
+  std::stringstream text;
+  text << std::ifstream(d / "out" / "summary.json").rdbuf();
+  const std::string summary = text.str();
+  EXPECT_EQ(summary_number(summary, "DEM_region_length_m"), 0.15);
+  EXPECT_GT(summary_number(summary, "sheet_nodes_in_particles"), 2.0);
+  EXPECT_GT(summary_number(summary, "sheet_nodes_in_continuum"), 5.0);
+  // The box starts at x = 0.25 m; the crossing lies a pad and a band (about 2 cm) inside it.
+  EXPECT_GT(summary_number(summary, "sheet_crossing_x_m"), 0.25);
+  EXPECT_LT(summary_number(summary, "sheet_crossing_x_m"), 0.3);
+  EXPECT_GT(summary_number(summary, "T_max_kN_per_m"), 0.0);
+  fs::remove_all(d);
+}
+
 // Refused before the fill, naming the entry and the file, with no summary.json.
 TEST(PullOutHybridMode, BadInputNamesTheEntryAndTheFile)
 {
@@ -139,7 +160,11 @@ TEST(PullOutHybridMode, BadInputNamesTheEntryAndTheFile)
                         Case{"subsection Hybrid\n  set DEM region margin = 1\nend\n", "Hybrid/DEM region margin"},
                         Case{"subsection Hybrid\n  set coupling method = penalty\n  set penalty factor = 0\nend\n",
                              "Hybrid/penalty factor"},
-                        Case{"subsection Hybrid\n  set driven below weight = 1\nend\n", "Hybrid/driven below weight"}})
+                        Case{"subsection Hybrid\n  set driven below weight = 1\nend\n", "Hybrid/driven below weight"},
+                        Case{"subsection Hybrid\n  set DEM region length = 0.25\nend\n", "Hybrid/DEM region length"},
+                        Case{"subsection Hybrid\n  set DEM region length = -0.1\nend\n", "Hybrid/DEM region length"},
+                        Case{"subsection Hybrid\n  set continuum interface friction angle = 95\nend\n",
+                             "Hybrid/continuum interface friction angle"}})
     {
       const std::string file = write_input(d, c.extra);
       const std::string error = error_of(file);
