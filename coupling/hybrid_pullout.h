@@ -39,7 +39,8 @@
 //   core's edge: the nodes past it (in the pad and the band) and the rest of the sheet as drawn
 //   (the lower part's tail; a wrap-around's return and upper part) become a truss sheet in the
 //   continuum, joined to the particles' part by one segment (sheet_crossing.h). The head
-//   tension is still the DEM clamp's.
+//   tension is still the DEM clamp's. Nodes are not handed over: the continuum's first nodes,
+//   pulled into the core, keep the soil at the drawn path's start (coupling/README.md).
 //
 // What is left out, on purpose or not yet: without a DEM region length the sheet must lie in the
 // DEM core, one branch clear of the band (`margin` is checked against that); wall contacts of the band's particles (at the front
