@@ -83,7 +83,9 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
   prm.enter_subsection("Hybrid");
   r.margin = prm.get_double("DEM region margin");
   r.dem_region_length = prm.get_double("DEM region length");
-  spec.continuum.sheet_interface_friction_deg = prm.get_double("continuum interface friction angle");
+  // 0 takes the grains' angle on the sheet (Sheet/Interface/friction angle).
+  const double delta = prm.get_double("continuum interface friction angle");
+  spec.continuum.sheet_interface.friction_angle_deg = delta != 0.0 ? delta : in.tank.sheet.interface.friction_angle_deg;
   r.lift_thickness = prm.get_double("lift thickness");
   r.band_width = prm.get_double("band width");
   r.cell_size = prm.get_double("cell size");

@@ -149,7 +149,8 @@ int main(int argc, char **argv)
   spec.region.scale_band_inertia = scale_inertia;
   spec.region.driven_below_weight = driven_below_weight;
   spec.region.dem_region_length = dem_length;
-  spec.continuum.sheet_interface_friction_deg = interface_friction;
+  spec.continuum.sheet_interface.friction_angle_deg =
+    interface_friction > 0.0 ? interface_friction : tank.sheet.interface.friction_angle_deg;
   // Linear elastic, or (--mohr-coulomb 1) Mohr-Coulomb phi = 30 deg, psi = 0, c = 0 (the
   // pull-out inputs' kind, whose stress update costs more per point).
   spec.continuum.soil.kind = mohr_coulomb ? fem::SoilModelKind::mohr_coulomb : fem::SoilModelKind::linear_elastic;

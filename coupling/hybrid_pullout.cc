@@ -89,8 +89,8 @@ void HybridPullOutSpec::validate(const std::string &where) const
                          "continuum), or 0 (the whole sheet in the particles) [m]");
   fem::require_parameter(continuum.k0 >= 0.0 && std::isfinite(continuum.k0), where, "Continuum/K0", continuum.k0,
           "must be zero (the soil's 1 - sin phi) or positive [-]");
-  fem::require_parameter(continuum.sheet_interface_friction_deg >= 0.0 && continuum.sheet_interface_friction_deg < 90.0,
-                         where, "Hybrid/continuum interface friction angle", continuum.sheet_interface_friction_deg,
+  const double delta = continuum.sheet_interface.friction_angle_deg;
+  fem::require_parameter(delta > 0.0 && delta < 90.0, where, "Hybrid/continuum interface friction angle", delta,
                          "must lie in [0, 90): 0 takes 'Sheet/Interface/friction angle' [deg]");
   fem::require_parameter(continuum.local_damping >= 0.0 && continuum.local_damping < 1.0, where, "Continuum/local damping",
           continuum.local_damping, "must lie in [0, 1) [-]");
@@ -356,9 +356,6 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
       truss.axial_stiffness = spec.tank.sheet.axial_stiffness;
       truss.areal_mass = spec.tank.sheet.areal_mass;
       truss.interface = spec.continuum.sheet_interface;
-      truss.interface.friction_angle_deg = spec.continuum.sheet_interface_friction_deg > 0.0
-                                             ? spec.continuum.sheet_interface_friction_deg
-                                             : spec.tank.sheet.interface.friction_angle_deg;
       const fem::EmbeddedSheet unscaled(continuum_->space(), fem::TrussSheet(continuum_sheet_nodes, truss, where), {},
                                         where);
       const double step = std::min(particles.time_step(), continuum_->time_step());

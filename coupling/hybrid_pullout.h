@@ -35,7 +35,7 @@
 //   the DEM pull-out (dem::PullOut, advanced by the coupled stepper).
 //
 // - With a DEM region length (HybridRegionSpec::dem_region_length), the box is that long and
-//   the sheet laid in it reaches 2 segments from its back; after the fill the sheet is cut at the
+//   the sheet laid in it reaches two thicknesses from its back; after the fill the sheet is cut at the
 //   core's edge: the nodes past it (in the pad and the band) and the rest of the sheet as drawn
 //   (the lower part's tail; a wrap-around's return and upper part) become a truss sheet in the
 //   continuum, joined to the particles' part by one segment (sheet_crossing.h). The head
@@ -98,11 +98,10 @@ struct HybridContinuumSpec
   double k0 = 0.0;             ///< sigma_h / sigma_v at rest; 0 takes the soil's default (1 - sin phi) [-]
   double local_damping = 0.7;  ///< the continuum's, as the grains' [-]
   /// The interface of the sheet's part in the continuum (HybridRegionSpec::dem_region_length):
-  /// cohesion and penalty stiffnesses, and its friction angle if `sheet_interface_friction_deg`
-  /// is 0 is the tank's sheet interface's (the grains' contact angle, above the macroscopic angle
-  /// the DEM's sheet mobilises: calibrate it on a DEM pull-out, T / (2 sigma_v L)).
+  /// friction angle, cohesion and penalty stiffnesses. Its friction angle should be the
+  /// macroscopic angle the DEM's sheet mobilises (calibrate it on a DEM pull-out, T / (2 sigma_v
+  /// L)), which is below the grains' contact angle (the tank's sheet interface's).
   fem::SheetInterfaceParameters sheet_interface;
-  double sheet_interface_friction_deg = 0.0;
 };
 
 struct HybridPullOutSpec
