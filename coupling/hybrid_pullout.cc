@@ -8,7 +8,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <set>
+#include <tuple>
 #include <sstream>
 #include <stdexcept>
 
@@ -51,6 +54,75 @@ std::vector<double> graded_steps(double a, double b, double cell, double far_cel
   if (fine_at_end)
     std::reverse(steps.begin(), steps.end());
   return steps;
+}
+/// Loads the top of the filled particle box with `stress` [Pa] through its lid (parked above the
+/// fill: brought down onto the highest grain, frictionless, servo-controlled) until the lid's stress
+/// is within 1 % of it and the unbalanced-force ratio below `target` (checked every 200 steps), then
+/// parks the lid above the fill again. Without a lid, only settles the box to `target`. Returns
+/// the steps taken and the lid's last stress; throws std::runtime_error naming `where` past
+/// `max_steps`.
+std::pair<std::uint64_t, double> settle_under_overburden(dem::DemSystem &particles, std::optional<std::size_t> lid_index,
+                                                         double stress, double target, std::uint64_t max_steps,
+                                                         const std::string &where)
+{
+  if (!lid_index)
+    {
+      std::uint64_t steps = 0;
+      do
+        {
+          for (int k = 0; k < 200; ++k)
+            particles.step();
+          steps += 200;
+          if (steps >= max_steps)
+            throw std::runtime_error(where + ": the particle box did not settle after its sheet was cut in " +
+                                     std::to_string(steps) + " steps");
+        }
+      while (dem::unbalanced_force_ratio(particles) >= target);
+      return {steps, 0.0};
+    }
+  const dem::ParticleSet &p = particles.particles();
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t d = 0; d < p.n_discs_total(); ++d)
+    top = std::max(top, p.disc_y[d] + p.disc_radius[d]);
+  dem::Wall &lid = particles.walls()[*lid_index];
+  const double parked_at = lid.start.y();
+  const dem::LinearContactLaw law_while_filling = lid.law;
+  dem::ContactParameters frictionless = lid.law.parameters();
+  frictionless.friction_angle_deg = 0.0; // a surcharge, as an air bag, carries no shear
+  lid.law = dem::LinearContactLaw(frictionless);
+  lid.translate(Vec2(0.0, top - lid.start.y()));
+  lid.control = dem::WallControl::servo_stress;
+  lid.servo = dem::WallServo{};
+  lid.servo.target_stress = stress;
+  // The speed a lid may approach at: a hundredth of a grain's radius per step at most.
+  lid.servo.max_speed = 0.01 * *std::min_element(p.disc_radius.begin(), p.disc_radius.end()) / particles.time_step();
+  particles.request_neighbour_rebuild();
+  std::uint64_t steps = 0;
+  for (;;)
+    {
+      for (int k = 0; k < 200; ++k)
+        particles.step();
+      steps += 200;
+      const double reached = particles.walls()[*lid_index].normal_stress();
+      if (std::abs(reached - stress) < 0.01 * stress && dem::unbalanced_force_ratio(particles) < target)
+        {
+          dem::Wall &done = particles.walls()[*lid_index];
+          done.control = dem::WallControl::prescribed_velocity;
+          done.velocity = Vec2::Zero();
+          done.law = law_while_filling;
+          done.translate(Vec2(0.0, parked_at - done.start.y()));
+          particles.request_neighbour_rebuild();
+          return {steps, reached};
+        }
+      if (steps >= max_steps)
+        {
+          std::ostringstream message;
+          message << where << ": the particle box did not settle under its overburden of " << stress << " Pa in "
+                  << steps << " steps (the lid at " << reached << " Pa, unbalanced-force ratio "
+                  << dem::unbalanced_force_ratio(particles) << ", target " << target << ")";
+          throw std::runtime_error(message.str());
+        }
+    }
 }
 } // namespace
 
@@ -181,6 +253,7 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
   set_up_.n_particles = p.n_bodies();
   set_up_.particle_time_step = particles.time_step();
   set_up_.fill_steps = particles.step_count();
+  const dem::PullOutGeometry &g = spec.tank.geometry;
 
   // The band and the pad from the grains as filled: w four mean disc diameters unless given, the
   // pad one branch (twice the largest reach of a body's discs from its centre).
@@ -200,7 +273,6 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
 
   // The DEM core, in the box's frame: the box less pad and band on its shared sides; the other
   // sides lie past the tank's walls (they idle).
-  const dem::PullOutGeometry &g = spec.tank.geometry;
   const double width = box_.x1 - box_.x0, height = box_.y1 - box_.y0;
   const double beyond = 1.0 + g.tank_length + g.fill_height;
   const double cx0 = box_.left_shared ? pad + w : -beyond, cx1 = width + beyond;
@@ -233,12 +305,33 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
                   << "ends " << sheet.x[sheet.n_nodes() - 1] << " m from it): it must leave at least 2 in and 1 out";
           throw std::invalid_argument(message.str());
         }
+      // The particles' part is cut now, before the box settles under its overburden (below), so
+      // that the grains close the gap the cut-off nodes leave in the pad and the band while the
+      // box's walls still hold them: tied to the continuum, the band's grains falling into it
+      // strained the band's cells (measured: sigma_nn 18.6 kPa at the continuum sheet's first node
+      // against gamma H = 2.3 kPa).
+      crossing_rest_length = sheet.rest_length[n_kept - 1];
+      particles.cut_sheet(0, n_kept);
+    }
+  if (spec.region.fill_under_overburden && box_.top_shared)
+    {
+      set_up_.overburden = spec.tank.unit_weight * (g.fill_height - box_.y1);
+      std::tie(set_up_.overburden_steps, set_up_.overburden_reached) =
+        settle_under_overburden(particles, tank_->tank.walls.lid, set_up_.overburden,
+                                spec.tank.filling.equilibrium_unbalanced_ratio, spec.max_settling_steps, where);
+    }
+  else if (crossing)
+    set_up_.overburden_steps =
+      settle_under_overburden(particles, std::nullopt, 0.0, spec.tank.filling.equilibrium_unbalanced_ratio,
+                              spec.max_settling_steps, where)
+        .first;
+  if (crossing)
+    {
       // The continuum's part starts one segment (the DEM sheet's) past the last node in the core,
       // straight towards the sheet's end as drawn, and follows the drawing from there (a wrap-
       // around's return and upper part), at the level the sheet was laid at (the clamp's, which
       // has not moved), in the box's frame. The laid nodes past the core are not used: the fill
       // may have crumpled the end of the box's sheet against the box's back (tension-only spars).
-      crossing_rest_length = sheet.rest_length[n_kept - 1];
       const Vec2 last_in_core = sheet.node(n_kept - 1);
       std::vector<Vec2> drawn;
       for (const Vec2 &corner : g.sheet_corners(sheet.y[0] + box_.y0))
@@ -363,7 +456,6 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
       truss.mass_scaling =
         std::max(sheet.parameters().mass_scaling, 1.25 * std::pow(step / unscaled.stable_time_step(), 2));
       continuum_->attach_sheet(fem::TrussSheet(continuum_sheet_nodes, truss, where), {});
-      particles.cut_sheet(0, n_kept);
       set_up_.n_sheet_nodes_particles = n_kept;
       set_up_.n_sheet_nodes_continuum = continuum_sheet_nodes.size();
     }

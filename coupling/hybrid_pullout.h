@@ -87,6 +87,13 @@ struct HybridRegionSpec
   /// The band's inertia scaled (DemSystem::scale_band_inertia): a quasi-static pull-out needs
   /// the band's statics, not its weighted dynamics, and the step goes back to the particles' own.
   bool scale_band_inertia = true;
+  /// Before the coupling, the box's top (if the continuum lies above it) is loaded by the weight
+  /// of the soil above it, gamma (fill - y1), through a frictionless lid servo-controlled to that
+  /// stress, and the box settles under it; the lid is then parked. The particles so start at the
+  /// overburden the continuum starts at (its geostatic stress). Without it, the box, filled under
+  /// its own weight alone, takes the overburden only once tied to the continuum, settles more than
+  /// the continuum beside it, and the load arches onto the continuum (coupling/README.md).
+  bool fill_under_overburden = true;
   /// Throws std::invalid_argument naming `where` and the parameter.
   void validate(const std::string &where) const;
 };
@@ -136,6 +143,10 @@ struct HybridSetUp
   std::size_t n_particles = 0, n_cells = 0, n_tied = 0, n_driven = 0;
   double band_width = 0.0, cell_size = 0.0, pad = 0.0; ///< [m]
   std::uint64_t fill_steps = 0, settling_steps = 0;
+  /// The box under its overburden (HybridRegionSpec::fill_under_overburden): the stress asked,
+  /// the lid's stress when released [Pa] and the steps taken (0 if not loaded).
+  double overburden = 0.0, overburden_reached = 0.0;
+  std::uint64_t overburden_steps = 0;
   double settled_unbalanced_ratio = 0.0;
   double time_step = 0.0;          ///< the coupled step [s]
   /// The sheet's nodes in the particles' core and in the continuum (0 when it does not cross),
