@@ -129,6 +129,7 @@ public:
   const Vector &velocity() const { return velocity_; }         ///< v at time() - dt/2, owned [m/s]
   const Vector &lumped_mass() const { return mass_; }          ///< per DoF [kg/m]
   MaterialPointHistory &material_points() { return material_points_; }
+  const MaterialPointHistory &material_points() const { return material_points_; }
   const Vector &internal_force() const { return internal_force_; } ///< f_int(u_n), owned [N/m]
   const Vector &external_force() const { return external_force_; } ///< f_ext(t_n), owned [N/m]
   /// Whether owned DoF `local_dof` (local index) has a prescribed displacement.
