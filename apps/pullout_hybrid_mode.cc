@@ -10,10 +10,14 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 
 namespace geohybrid::apps
 {
@@ -68,6 +72,12 @@ void declare_hybrid_parameters(ParameterHandler &prm)
                     "its stiffest contact, so that the band does not lower the stable step (a density scaling of "
                     "the band: its statics are unchanged, its dynamics are not the weighted ones; a quasi-static "
                     "pull needs only the statics)");
+  prm.declare_entry("fill under overburden", region.fill_under_overburden ? "true" : "false", Patterns::Bool(),
+                    "hybrid mode: before the coupling, load the particle box's top with the weight of the soil "
+                    "above it, gamma (fill height - box top), through a frictionless servo-controlled lid, and "
+                    "settle it (the continuum starts at its geostatic stress: so do the particles then); false "
+                    "lets the box take that load only once tied, when it settles more than the continuum beside it "
+                    "and the load arches onto the continuum");
   prm.leave_subsection();
 }
 
@@ -95,6 +105,7 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
     r.method = coupling::LagrangeMultiplierCoupling{};
   r.driven_below_weight = prm.get_double("driven below weight");
   r.scale_band_inertia = prm.get_bool("scale band inertia");
+  r.fill_under_overburden = prm.get_bool("fill under overburden");
   prm.leave_subsection();
 
   const ContinuumSoilInput soil = parse_continuum_soil(prm);
@@ -114,6 +125,56 @@ std::string method_name(const coupling::CouplingMethod &method)
 {
   return std::holds_alternative<coupling::PenaltyCoupling>(method) ? "penalty" : "multipliers";
 }
+
+/// coupling_diagnostics.csv: the coupling's diagnostics at each point of the curve (issue 6:
+/// "diagnostics every output step"), and their extremes for the summary.
+class DiagnosticsFile
+{
+public:
+  explicit DiagnosticsFile(const std::filesystem::path &directory)
+    : path_(directory / "coupling_diagnostics.csv")
+    , file_(path_)
+  {
+    if (!file_)
+      throw std::runtime_error("cannot write " + path_.string());
+    file_ << "time_s,head_displacement_m,head_tension_N_per_m,particles_unbalanced_ratio,"
+             "continuum_out_of_balance_ratio,coupling_force_on_particles_x_N_per_m,"
+             "coupling_force_on_particles_y_N_per_m,coupling_force_on_continuum_x_N_per_m,"
+             "coupling_force_on_continuum_y_N_per_m,coupling_force_imbalance_N_per_m,particle_energy_J_per_m,"
+             "particle_kinetic_J_per_m,continuum_kinetic_J_per_m,coupling_energy_J_per_m,crossing_tension_N_per_m\n";
+    file_.precision(10);
+  }
+
+  void add(const dem::PullPoint &point, coupling::HybridPullOut &hybrid)
+  {
+    const coupling::CouplingDiagnostics d = hybrid.stepper().diagnostics();
+    const coupling::CouplingForceSums &f = d.forces;
+    const double imbalance = (f.on_particles + f.on_continuum).norm();
+    const double largest = std::max(f.on_particles.norm(), f.on_continuum.norm());
+    largest_imbalance_ = std::max(largest_imbalance_, imbalance);
+    largest_force_ = std::max(largest_force_, largest);
+    const coupling::SheetCrossing *crossing = hybrid.stepper().sheet_crossing();
+    file_ << hybrid.stepper().time() << ',' << point.head_displacement << ',' << point.head_tension << ','
+          << dem::unbalanced_force_ratio(hybrid.particle_system()) << ',' << hybrid.continuum().out_of_balance_ratio()
+          << ',' << f.on_particles.x() << ',' << f.on_particles.y() << ',' << f.on_continuum.x() << ','
+          << f.on_continuum.y() << ',' << imbalance << ',' << d.particle_energy << ',' << d.particle_kinetic << ','
+          << d.continuum_kinetic << ',' << d.coupling_energy << ',' << (crossing ? crossing->tension() : 0.0) << '\n';
+  }
+
+  void finish(Summary &summary)
+  {
+    file_.flush();
+    if (!file_)
+      throw std::runtime_error("writing " + path_.string() + " failed");
+    summary.set("coupling_force_imbalance_max_N_per_m", largest_imbalance_);
+    summary.set("coupling_force_max_N_per_m", largest_force_);
+  }
+
+private:
+  std::filesystem::path path_;
+  std::ofstream file_;
+  double largest_imbalance_ = 0.0, largest_force_ = 0.0;
+};
 } // namespace
 
 int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where)
@@ -169,6 +230,10 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
                       std::to_string(s.n_sheet_nodes_particles) + " nodes in the particles, " +
                       std::to_string(s.n_sheet_nodes_continuum) + " in the continuum); "
                   : std::string())
+            << (s.overburden > 0.0 ? "the box settled under its overburden " + number(s.overburden / 1e3, 4) +
+                                         " kPa (the lid at " + number(s.overburden_reached / 1e3, 4) + " kPa) in " +
+                                         std::to_string(s.overburden_steps) + " steps; "
+                                   : std::string())
             << "settled together in " << s.settling_steps << " steps (unbalanced ratio "
             << number(s.settled_unbalanced_ratio, 3) << "), set-up " << number(set_up_time, 4)
             << " s; time step " << number(s.time_step, 4) << " s (the particles' own " << number(s.particle_time_step, 4)
@@ -181,9 +246,11 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   // frame; the box's frame is shifted by (x0, y0)).
   PulloutOutput output(out, g.sheet_width, in.profiles_at);
   ProgressReport progress("pulling", in.pull.final_displacement);
+  DiagnosticsFile diagnostics(out);
   std::size_t n_points = 0;
   hybrid->pull(in.pull, [&](const dem::PullPoint &p) {
     add_dem_sheet_point(output, tank, hybrid->particle_system().sheets()[0], p, dem::Vec2(box.x0, box.y0));
+    diagnostics.add(p, *hybrid);
     progress.update(p.head_displacement);
     ++n_points;
   });
@@ -218,6 +285,10 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   summary.set("n_settling_steps", static_cast<double>(s.settling_steps));
   summary.set("n_pull_steps", static_cast<double>(hybrid->pull_steps()));
   summary.set("settled_unbalanced_ratio", s.settled_unbalanced_ratio);
+  summary.set("overburden_Pa", s.overburden);
+  summary.set("overburden_reached_Pa", s.overburden_reached);
+  summary.set("n_overburden_steps", static_cast<double>(s.overburden_steps));
+  diagnostics.finish(summary);
   summary.set("n_curve_points", static_cast<double>(n_points));
   summary.set("fill_wall_time_s", fill_time);
   summary.set("set_up_wall_time_s", set_up_time);

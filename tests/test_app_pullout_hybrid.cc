@@ -95,6 +95,11 @@ TEST(PullOutHybridMode, WritesTheContractWithTheHybridKeys)
   EXPECT_GT(profiles.size(), 2u * 25u); // two profiles of a row per segment (0.25 m of 1 cm segments)
   EXPECT_TRUE(fs::exists(out / "pullout_curve.png"));
   EXPECT_TRUE(fs::exists(out / "parameters.prm"));
+  // The coupling's diagnostics at each point of the curve.
+  const std::vector<std::string> diagnostics = lines_of(out / "coupling_diagnostics.csv");
+  ASSERT_EQ(diagnostics.size(), curve.size());
+  EXPECT_EQ(diagnostics[0].rfind("time_s,head_displacement_m,head_tension_N_per_m,particles_unbalanced_ratio,", 0), 0u)
+    << diagnostics[0];
 
   std::stringstream text;
   text << std::ifstream(out / "summary.json").rdbuf();
@@ -113,6 +118,15 @@ TEST(PullOutHybridMode, WritesTheContractWithTheHybridKeys)
   EXPECT_GT(dt, 0.0);
   EXPECT_LE(dt, dt_particles * (1.0 + 1e-12));
   EXPECT_GT(summary_number(summary, "n_settling_steps"), 0.0);
+  // The box's top was loaded by the 0.05 m of soil above it before the coupling (gamma 15.2
+  // kN/m^3: 760 Pa), the lid released within 1 % of it.
+  EXPECT_NEAR(summary_number(summary, "overburden_Pa"), 15.2e3 * 0.05, 1e-6) << summary;
+  EXPECT_NEAR(summary_number(summary, "overburden_reached_Pa"), 15.2e3 * 0.05, 0.01 * 15.2e3 * 0.05);
+  // The coupling forces on the two sides cancel to round-off at every point of the pull (the
+  // multipliers act as -lambda on a particle and N_I lambda on the nodes, sum_I N_I = 1).
+  const double largest = summary_number(summary, "coupling_force_max_N_per_m");
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LT(summary_number(summary, "coupling_force_imbalance_max_N_per_m"), 1e-10 * largest) << summary;
   // 1 mm at 5 mm/s: at least 0.2 s of coupled steps, and not much more (the start's ramp).
   const double pulled_for = summary_number(summary, "n_pull_steps") * dt;
   EXPECT_GE(pulled_for, 0.2 * (1.0 - 1e-9));
