@@ -262,6 +262,28 @@ InterfacePatchTestResult interface_patch_test(const InterfaceCoupling &interface
 WaveRecord interface_strip_crossing(const InterfaceCoupling &interface, const StripSpec &spec,
                                     const PatchGeometry &lattice = {});
 
+/// Method 3's geostatic column: `columns` x `rows` bonded discs standing on the matching
+/// continuum, `depth` cells of one spacing deep, its base fixed, the sides of both free; gravity
+/// along -y and local damping `local_damping` on both sides; run, 500 steps at a time, until the
+/// windows' stresses change by less than `tolerance` of the base stress. The vertical stress of
+/// windows `window` spacings high against the weight above: the lattice's Love-Weber stress over
+/// whole rows from the second row up (the bottom row's interface forces are not contacts, which
+/// Love-Weber counts) to the last whole window below the top, the continuum's cell mean from the
+/// interface down to the base. Samples from the top down: the lattice's last sample and the
+/// continuum's first are the two beside the interface (ColumnRecord::jump_across_band). Throws
+/// std::invalid_argument if rest is not reached within max_steps.
+struct InterfaceColumnSpec
+{
+  double gravity = 9.81;              ///< [m/s^2]
+  double local_damping = 0.7;         ///< both sides [-]
+  unsigned int columns = 8, rows = 24, depth = 20;
+  double window = 4.0;                ///< in spacings (the lattice's: whole rows, the nearest number)
+  double tolerance = 1e-6;
+  unsigned int max_steps = 60000;
+};
+ColumnRecord interface_geostatic_column(const InterfaceCoupling &interface, const InterfaceColumnSpec &spec = {},
+                                        const PatchGeometry &lattice = {});
+
 /// Method 3's undamped energy run: the standing strip of `spec` with the pulse of
 /// interface_strip_crossing, `n_steps` steps of `time_step` (0: the coupled stable step) [s]. The
 /// pulse crosses, reflects at the continuum's free bottom as a tension that opens the interface.

@@ -6,6 +6,7 @@
 
 #include "coupling/hexagonal_lattice.h"
 #include "coupling/standing_lattice.h"
+#include "dem/measurements.h"
 
 #include <algorithm>
 #include <cmath>
@@ -103,6 +104,102 @@ WaveRecord interface_strip_crossing(const InterfaceCoupling &interface, const St
   record.n_particles = pc.n_bodies();
   record.n_cells = s.mesh->n_active_cells();
   run_beside_reference(*s.stepper, reference, coupled, coupled_of, g, half_initial, record);
+  return record;
+}
+
+ColumnRecord interface_geostatic_column(const InterfaceCoupling &interface, const InterfaceColumnSpec &spec,
+                                        const PatchGeometry &lattice)
+{
+  StandingLattice s = standing_lattice(lattice, spec.columns, spec.rows, spec.depth, interface);
+  const PatchGeometry &g = s.g;
+  const double d = g.spacing(), h = g.row_height();
+  // The continuum again, with its base (y = min: boundary id 2 of the colorized rectangle) fixed,
+  // under gravity and damped; the lattice under the same gravity and damping.
+  fem::ExplicitSettings continuum_settings = patch_continuum_settings(g);
+  continuum_settings.gravity[1] = -spec.gravity;
+  continuum_settings.damping.local = spec.local_damping;
+  fem::BoundaryConditions base;
+  base.displacements.push_back({2, true, true, nullptr});
+  s.continuum = std::make_unique<fem::ExplicitSolver>(*s.mesh, matching_soil(g), base, continuum_settings);
+  dem::DemSettings particle_settings = undamped_settings();
+  particle_settings.gravity = Vec2(0.0, -spec.gravity);
+  particle_settings.local_damping = spec.local_damping;
+  s.particles = std::make_unique<dem::DemSystem>(s.discs(), bonded_lattice_law(g.kn, g.ks), particle_settings);
+  s.particles->initialise_forces();
+  s.particles->bond_touching_contacts();
+  s.stepper = std::make_unique<CoupledStepper>(*s.particles, *s.continuum, s.interface);
+
+  ColumnRecord record;
+  record.time_step = s.stepper->time_step();
+  const double rho = continuum_settings.density;
+  // The lattice's mass per area is rho (its discs' mass over d h each), from half a row below
+  // the bottom row to half a row above the top one; the continuum's from y = 0 down.
+  const double lattice_bottom = s.bottom_row() - 0.5 * h, lattice_top = lattice_bottom + spec.rows * h;
+  const double lattice_weight = rho * spec.gravity * spec.rows * h;
+  record.base_stress = lattice_weight + rho * spec.gravity * spec.depth * d;
+  struct Window
+  {
+    double y0, y1;
+    bool particles;
+  };
+  std::vector<Window> windows;
+  const auto rows_per_window = static_cast<unsigned int>(std::max(1L, std::lround(spec.window * d / h)));
+  std::vector<Window> lattice_windows;
+  for (unsigned int j = 1; j + rows_per_window <= spec.rows; j += rows_per_window)
+    lattice_windows.push_back({lattice_bottom + j * h, lattice_bottom + (j + rows_per_window) * h, true});
+  windows.assign(lattice_windows.rbegin(), lattice_windows.rend());
+  for (double y1 = 0.0; y1 - spec.window * d >= -1.0 * spec.depth * d - 1e-9 * d; y1 -= spec.window * d)
+    windows.push_back({y1 - spec.window * d, y1, false});
+  const auto continuum_mean_stress_yy = [&](double y0, double y1) {
+    double sum = 0.0;
+    unsigned int n = 0;
+    for (const auto &cell : s.continuum->space().dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned() && cell->center()[1] > y0 && cell->center()[1] < y1)
+        for (const auto &point : s.continuum->material_points().at(cell))
+          {
+            sum += point->stress[1][1];
+            ++n;
+          }
+    if (n == 0)
+      throw std::logic_error("interface geostatic column: a stress window holds no cell");
+    return sum / n;
+  };
+  // Love-Weber over a region wider than the lattice by half a spacing on each side (the side
+  // discs move sideways as the column is loaded, and a disc on the region's edge may fall out),
+  // scaled to the lattice's width, columns x d (each disc stands for d x h).
+  const double wide = spec.columns + 1.0;
+  const auto measure = [&] {
+    std::vector<double> stress;
+    for (const Window &w : windows)
+      stress.push_back(
+        -(w.particles ? dem::love_weber_stress(*s.particles, dem::Region{-d, w.y0, spec.columns * d, w.y1})[1] * wide /
+                          spec.columns
+                      : continuum_mean_stress_yy(w.y0, w.y1)));
+    return stress;
+  };
+  std::vector<double> previous = measure();
+  for (;;)
+    {
+      s.stepper->run_steps(500);
+      record.n_steps += 500;
+      const std::vector<double> now = measure();
+      double change = 0.0;
+      for (std::size_t k = 0; k < now.size(); ++k)
+        change = std::max(change, std::abs(now[k] - previous[k]) / record.base_stress);
+      previous = now;
+      if (change < spec.tolerance)
+        break;
+      if (record.n_steps >= spec.max_steps)
+        throw std::invalid_argument("interface geostatic column: not at rest after 'max steps' = " +
+                                    std::to_string(spec.max_steps) + " (stress change " + std::to_string(change) + ")");
+    }
+  for (std::size_t k = 0; k < windows.size(); ++k)
+    {
+      const double centre = 0.5 * (windows[k].y0 + windows[k].y1);
+      const double weight_above = windows[k].particles ? rho * spec.gravity * (lattice_top - centre)
+                                                       : lattice_weight - rho * spec.gravity * centre;
+      record.samples.push_back({centre, previous[k], weight_above, windows[k].particles});
+    }
   return record;
 }
 

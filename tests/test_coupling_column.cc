@@ -4,6 +4,7 @@
 #include "test_coupling_patch.h"
 
 #include "coupling/coupling_benchmarks.h"
+#include "coupling/standing_lattice.h"
 
 #include <gtest/gtest.h>
 
@@ -72,6 +73,25 @@ TEST(GeostaticColumn, ScalingTheBandsInertiaKeepsTheStressAndRaisesTheStep)
   ASSERT_EQ(record.samples.size(), weighted.samples.size());
   for (std::size_t k = 0; k < record.samples.size(); ++k)
     EXPECT_NEAR(record.samples[k].measured, weighted.samples[k].measured, 5e-3 * weighted.samples[k].measured);
+}
+
+// Method 3: the lattice (8 columns, 24 rows) stands on the continuum (20 cells deep) across the
+// non-overlapping interface (the matched springs, 30 deg); each carries the weight above it, with
+// no step across the interface. The issue asks 2 %; measured 3.0e-5 (the lattice's windows, the
+// geometry of its compression) and 9.4e-7 (the continuum's), asked 1e-4. (The interface forces
+// reach the lattice as the hook's, not as contacts: its window starts at the second row.)
+TEST(GeostaticColumn, VerticalStressIsTheWeightAboveAcrossTheInterface)
+{
+  const ColumnRecord record = interface_geostatic_column(matched_interface(PatchGeometry{}));
+  std::cout << "interface: at rest after " << record.n_steps << " steps of " << record.time_step
+            << " s; base stress " << record.base_stress << " Pa\n";
+  for (const ColumnSample &s : record.samples)
+    std::cout << "  " << (s.particles ? "particles " : "continuum ") << "y = " << s.height << " m: sigma_v "
+              << s.measured << " Pa, weight above " << s.closed_form << " Pa, error " << s.relative_error() << "\n";
+  std::cout << "  jump across the interface " << record.jump_across_band() << std::endl;
+  ASSERT_GE(record.samples.size(), 8u);
+  EXPECT_LT(record.largest_relative_error(), 1e-4);
+  EXPECT_LT(std::abs(record.jump_across_band()), 1e-4);
 }
 
 TEST(GeostaticColumn, RefusesTheInterfaceCoupling)
