@@ -51,6 +51,28 @@ double continuum_mean_stress_xx(fem::ExplicitSolver &continuum, double x0, doubl
 }
 } // namespace
 
+std::vector<double> run_column_to_rest(CoupledStepper &stepper, const std::function<std::vector<double>()> &measure,
+                                       double tolerance, unsigned int max_steps, ColumnRecord &record,
+                                       const std::string &what)
+{
+  std::vector<double> previous = measure();
+  for (;;)
+    {
+      stepper.run_steps(500);
+      record.n_steps += 500;
+      const std::vector<double> now = measure();
+      double change = 0.0;
+      for (std::size_t k = 0; k < now.size(); ++k)
+        change = std::max(change, std::abs(now[k] - previous[k]) / record.base_stress);
+      previous = now;
+      if (change < tolerance)
+        return previous;
+      if (record.n_steps >= max_steps)
+        throw std::invalid_argument(what + ": not at rest after 'max steps' = " + std::to_string(max_steps) +
+                                    " (stress change " + std::to_string(change) + ")");
+    }
+}
+
 ColumnRecord geostatic_column(const CouplingMethod &method, const ColumnSpec &spec)
 {
   if (std::holds_alternative<InterfaceCoupling>(method))
@@ -113,22 +135,8 @@ ColumnRecord geostatic_column(const CouplingMethod &method, const ColumnSpec &sp
       }
     return stress;
   };
-  std::vector<double> previous = measure();
-  for (;;)
-    {
-      patch.stepper->run_steps(500);
-      record.n_steps += 500;
-      const std::vector<double> now = measure();
-      double change = 0.0;
-      for (std::size_t k = 0; k < now.size(); ++k)
-        change = std::max(change, std::abs(now[k] - previous[k]) / record.base_stress);
-      previous = now;
-      if (change < spec.tolerance)
-        break;
-      if (record.n_steps >= spec.max_steps)
-        throw std::invalid_argument("geostatic column: not at rest after 'max steps' = " +
-                                    std::to_string(spec.max_steps) + " (stress change " + std::to_string(change) + ")");
-    }
+  const std::vector<double> previous =
+    run_column_to_rest(*patch.stepper, measure, spec.tolerance, spec.max_steps, record, "geostatic column");
   const BandParticles &band = patch.stepper->band_particles();
   const dem::ParticleSet &p = patch.particles->particles();
   for (std::size_t q = 0; q < band.size(); ++q)

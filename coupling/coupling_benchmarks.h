@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace geohybrid::coupling::benchmarks
@@ -228,6 +229,14 @@ struct ColumnRecord
 /// Throws std::invalid_argument for the interface coupling (method 3 has no band: its column is
 /// interface_geostatic_column) or if rest is not reached within max_steps.
 ColumnRecord geostatic_column(const CouplingMethod &method, const ColumnSpec &spec = {});
+
+/// The columns' run to rest: `stepper` advances 500 steps at a time (counted in
+/// `record.n_steps`) until no value of `measure` changes by more than `tolerance` x
+/// `record.base_stress` over 500 steps; returns the last values. Throws std::invalid_argument
+/// naming `what` and 'max steps' if that takes more than `max_steps`.
+std::vector<double> run_column_to_rest(CoupledStepper &stepper, const std::function<std::vector<double>()> &measure,
+                                       double tolerance, unsigned int max_steps, ColumnRecord &record,
+                                       const std::string &what);
 
 // ---- Method 3, the non-overlapping interface: a lattice standing on the continuum ----
 // (standing_lattice.h; the same measures as above, across the interface y = 0 instead of a band.)

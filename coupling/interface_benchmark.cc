@@ -177,22 +177,8 @@ ColumnRecord interface_geostatic_column(const InterfaceCoupling &interface, cons
                       : continuum_mean_stress_yy(w.y0, w.y1)));
     return stress;
   };
-  std::vector<double> previous = measure();
-  for (;;)
-    {
-      s.stepper->run_steps(500);
-      record.n_steps += 500;
-      const std::vector<double> now = measure();
-      double change = 0.0;
-      for (std::size_t k = 0; k < now.size(); ++k)
-        change = std::max(change, std::abs(now[k] - previous[k]) / record.base_stress);
-      previous = now;
-      if (change < spec.tolerance)
-        break;
-      if (record.n_steps >= spec.max_steps)
-        throw std::invalid_argument("interface geostatic column: not at rest after 'max steps' = " +
-                                    std::to_string(spec.max_steps) + " (stress change " + std::to_string(change) + ")");
-    }
+  const std::vector<double> previous =
+    run_column_to_rest(*s.stepper, measure, spec.tolerance, spec.max_steps, record, "interface geostatic column");
   for (std::size_t k = 0; k < windows.size(); ++k)
     {
       const double centre = 0.5 * (windows[k].y0 + windows[k].y1);
