@@ -232,7 +232,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
                   : std::string())
             << (s.overburden > 0.0 ? "the box settled under its overburden " + number(s.overburden / 1e3, 4) +
                                          " kPa (the lid at " + number(s.overburden_reached / 1e3, 4) + " kPa) in " +
-                                         std::to_string(s.overburden_steps) + " steps; "
+                                         std::to_string(s.box_settling_steps) + " steps; "
                                    : std::string())
             << "settled together in " << s.settling_steps << " steps (unbalanced ratio "
             << number(s.settled_unbalanced_ratio, 3) << "), set-up " << number(set_up_time, 4)
@@ -287,7 +287,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   summary.set("settled_unbalanced_ratio", s.settled_unbalanced_ratio);
   summary.set("overburden_Pa", s.overburden);
   summary.set("overburden_reached_Pa", s.overburden_reached);
-  summary.set("n_overburden_steps", static_cast<double>(s.overburden_steps));
+  summary.set("n_box_settling_steps", static_cast<double>(s.box_settling_steps));
   diagnostics.finish(summary);
   summary.set("n_curve_points", static_cast<double>(n_points));
   summary.set("fill_wall_time_s", fill_time);

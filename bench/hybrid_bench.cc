@@ -274,7 +274,7 @@ int main(int argc, char **argv)
             << "\ntime_step_s=" << s.time_step << "\nparticle_time_step_s=" << s.particle_time_step
             << "\ndem_region_length_m=" << dem_length << "\nsheet_nodes_continuum=" << s.n_sheet_nodes_continuum
             << "\ncrossing_x_m=" << s.crossing_x << "\noverburden_Pa=" << s.overburden
-            << "\noverburden_reached_Pa=" << s.overburden_reached << "\noverburden_steps=" << s.overburden_steps
+            << "\noverburden_reached_Pa=" << s.overburden_reached << "\nbox_settling_steps=" << s.box_settling_steps
             << "\nsetup_wall_s=" << setup << std::endl;
   const double sheet_level_in_box = tank.geometry.sheet_level() - box.y0;
   report_sheet_faces(hybrid.particles().tank.system, box.x0, 0.5, 0.8, "settled_front");

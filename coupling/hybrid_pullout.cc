@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
-#include <optional>
 #include <set>
 #include <tuple>
 #include <sstream>
@@ -55,36 +55,37 @@ std::vector<double> graded_steps(double a, double b, double cell, double far_cel
     std::reverse(steps.begin(), steps.end());
   return steps;
 }
+/// Steps the particles 200 at a time until `at_rest()` (checked after each 200); returns the
+/// steps taken. Throws std::runtime_error with `failure()` past `max_steps`.
+std::uint64_t step_until(dem::DemSystem &particles, const std::function<bool()> &at_rest, std::uint64_t max_steps,
+                         const std::function<std::string()> &failure)
+{
+  std::uint64_t steps = 0;
+  do
+    {
+      if (steps >= max_steps)
+        throw std::runtime_error(failure());
+      for (int k = 0; k < 200; ++k)
+        particles.step();
+      steps += 200;
+    }
+  while (!at_rest());
+  return steps;
+}
+
 /// Loads the top of the filled particle box with `stress` [Pa] through its lid (parked above the
-/// fill: brought down onto the highest grain, frictionless, servo-controlled) until the lid's stress
-/// is within 1 % of it and the unbalanced-force ratio below `target` (checked every 200 steps), then
-/// parks the lid above the fill again. Without a lid, only settles the box to `target`. Returns
-/// the steps taken and the lid's last stress; throws std::runtime_error naming `where` past
-/// `max_steps`.
-std::pair<std::uint64_t, double> settle_under_overburden(dem::DemSystem &particles, std::optional<std::size_t> lid_index,
-                                                         double stress, double target, std::uint64_t max_steps,
+/// fill: brought down onto the highest grain, frictionless, servo-controlled) until the lid's
+/// stress is within 1 % of it and the unbalanced-force ratio below `target`, then parks the lid
+/// above the fill again with its law. Returns the steps taken and the lid's last stress.
+std::pair<std::uint64_t, double> settle_under_overburden(dem::DemSystem &particles, std::size_t lid_index, double stress,
+                                                         double target, std::uint64_t max_steps,
                                                          const std::string &where)
 {
-  if (!lid_index)
-    {
-      std::uint64_t steps = 0;
-      do
-        {
-          for (int k = 0; k < 200; ++k)
-            particles.step();
-          steps += 200;
-          if (steps >= max_steps)
-            throw std::runtime_error(where + ": the particle box did not settle after its sheet was cut in " +
-                                     std::to_string(steps) + " steps");
-        }
-      while (dem::unbalanced_force_ratio(particles) >= target);
-      return {steps, 0.0};
-    }
   const dem::ParticleSet &p = particles.particles();
   double top = -std::numeric_limits<double>::infinity();
   for (std::size_t d = 0; d < p.n_discs_total(); ++d)
     top = std::max(top, p.disc_y[d] + p.disc_radius[d]);
-  dem::Wall &lid = particles.walls()[*lid_index];
+  dem::Wall &lid = particles.walls()[lid_index];
   const double parked_at = lid.start.y();
   const dem::LinearContactLaw law_while_filling = lid.law;
   dem::ContactParameters frictionless = lid.law.parameters();
@@ -97,32 +98,26 @@ std::pair<std::uint64_t, double> settle_under_overburden(dem::DemSystem &particl
   // The speed a lid may approach at: a hundredth of a grain's radius per step at most.
   lid.servo.max_speed = 0.01 * *std::min_element(p.disc_radius.begin(), p.disc_radius.end()) / particles.time_step();
   particles.request_neighbour_rebuild();
-  std::uint64_t steps = 0;
-  for (;;)
-    {
-      for (int k = 0; k < 200; ++k)
-        particles.step();
-      steps += 200;
-      const double reached = particles.walls()[*lid_index].normal_stress();
-      if (std::abs(reached - stress) < 0.01 * stress && dem::unbalanced_force_ratio(particles) < target)
-        {
-          dem::Wall &done = particles.walls()[*lid_index];
-          done.control = dem::WallControl::prescribed_velocity;
-          done.velocity = Vec2::Zero();
-          done.law = law_while_filling;
-          done.translate(Vec2(0.0, parked_at - done.start.y()));
-          particles.request_neighbour_rebuild();
-          return {steps, reached};
-        }
-      if (steps >= max_steps)
-        {
-          std::ostringstream message;
-          message << where << ": the particle box did not settle under its overburden of " << stress << " Pa in "
-                  << steps << " steps (the lid at " << reached << " Pa, unbalanced-force ratio "
-                  << dem::unbalanced_force_ratio(particles) << ", target " << target << ")";
-          throw std::runtime_error(message.str());
-        }
-    }
+  const auto lid_stress = [&] { return particles.walls()[lid_index].normal_stress(); };
+  const std::uint64_t steps = step_until(
+    particles,
+    [&] { return std::abs(lid_stress() - stress) < 0.01 * stress && dem::unbalanced_force_ratio(particles) < target; },
+    max_steps,
+    [&] {
+      std::ostringstream message;
+      message << where << ": the particle box did not settle under its overburden of " << stress << " Pa in "
+              << max_steps << " steps (the lid at " << lid_stress() << " Pa, unbalanced-force ratio "
+              << dem::unbalanced_force_ratio(particles) << ", target " << target << ")";
+      return message.str();
+    });
+  const double reached = lid_stress();
+  dem::Wall &done = particles.walls()[lid_index];
+  done.control = dem::WallControl::prescribed_velocity;
+  done.velocity = Vec2::Zero();
+  done.law = law_while_filling;
+  done.translate(Vec2(0.0, parked_at - done.start.y()));
+  particles.request_neighbour_rebuild();
+  return {steps, reached};
 }
 } // namespace
 
@@ -313,18 +308,17 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
       crossing_rest_length = sheet.rest_length[n_kept - 1];
       particles.cut_sheet(0, n_kept);
     }
+  const double fill_ratio = spec.tank.filling.equilibrium_unbalanced_ratio;
   if (spec.region.fill_under_overburden && box_.top_shared)
     {
       set_up_.overburden = spec.tank.unit_weight * (g.fill_height - box_.y1);
-      std::tie(set_up_.overburden_steps, set_up_.overburden_reached) =
-        settle_under_overburden(particles, tank_->tank.walls.lid, set_up_.overburden,
-                                spec.tank.filling.equilibrium_unbalanced_ratio, spec.max_settling_steps, where);
+      std::tie(set_up_.box_settling_steps, set_up_.overburden_reached) = settle_under_overburden(
+        particles, tank_->tank.walls.lid, set_up_.overburden, fill_ratio, spec.max_settling_steps, where);
     }
   else if (crossing)
-    set_up_.overburden_steps =
-      settle_under_overburden(particles, std::nullopt, 0.0, spec.tank.filling.equilibrium_unbalanced_ratio,
-                              spec.max_settling_steps, where)
-        .first;
+    set_up_.box_settling_steps = step_until(
+      particles, [&] { return dem::unbalanced_force_ratio(particles) < fill_ratio; }, spec.max_settling_steps,
+      [&] { return where + ": the particle box did not settle after its sheet was cut"; });
   if (crossing)
     {
       // The continuum's part starts one segment (the DEM sheet's) past the last node in the core,

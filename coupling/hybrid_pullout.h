@@ -143,10 +143,12 @@ struct HybridSetUp
   std::size_t n_particles = 0, n_cells = 0, n_tied = 0, n_driven = 0;
   double band_width = 0.0, cell_size = 0.0, pad = 0.0; ///< [m]
   std::uint64_t fill_steps = 0, settling_steps = 0;
-  /// The box under its overburden (HybridRegionSpec::fill_under_overburden): the stress asked,
-  /// the lid's stress when released [Pa] and the steps taken (0 if not loaded).
+  /// The box under its overburden (HybridRegionSpec::fill_under_overburden): the stress asked
+  /// and the lid's stress when released (0 if not loaded) [Pa].
   double overburden = 0.0, overburden_reached = 0.0;
-  std::uint64_t overburden_steps = 0;
+  /// The box's own settling after the fill, before the coupling: under its overburden, or
+  /// after its sheet was cut (0 if neither).
+  std::uint64_t box_settling_steps = 0;
   double settled_unbalanced_ratio = 0.0;
   double time_step = 0.0;          ///< the coupled step [s]
   /// The sheet's nodes in the particles' core and in the continuum (0 when it does not cross),
