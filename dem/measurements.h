@@ -16,7 +16,7 @@ struct Region
 };
 
 /// Love-Weber average stress over the bodies whose centre of mass lies in the region:
-///   sigma_ab = -(1/A) sum_bodies sum_contacts f_a (x_c - x_body)_b,
+///   sigma_ab = (1/A) sum_bodies sum_contacts f_a (x_c - x_body)_b   (f the force on the body),
 /// written per body so that clusters, walls and sheets need no special branch vector. Compression is
 /// negative (continuum mechanics sign), components {xx, yy, xy} [Pa]. The xy entry is the
 /// symmetric part; equilibrium makes the skew part vanish.
