@@ -27,6 +27,11 @@ struct CouplingTestInput
   /// What the patch test applies: `strain`, with its shear left out for the non-overlapping
   /// interface (its set-up cannot load the disc-edge tangential springs; coupling/README.md).
   coupling::benchmarks::PlaneStrain patch_strain;
+  /// Methods 1 and 2: the patch test along the lattice's rows, where the weights are exact
+  /// (coupling_benchmarks.h): `strain` scaled to 'strain size along the rows', on the
+  /// commensurate layout nearest the input's band width and cell size.
+  coupling::benchmarks::PlaneStrain row_patch_strain;
+  coupling::benchmarks::RowPatchLayout row_patch_layout;
   coupling::benchmarks::StripSpec strip;     ///< of the wave
   unsigned int n_energy_steps = 10000;
 };

@@ -97,7 +97,6 @@ RowPatchTestResult row_patch_test(const CouplingMethod &method, const PlaneStrai
   const auto particles = strained_lattice(std::move(discs), g, eps);
   const dem::ParticleSet &p = particles->particles();
 
-
   PatchMesh mesh(MPI_COMM_WORLD);
   dealii::GridGenerator::subdivided_hyper_rectangle(mesh, {layout.cells_x, layout.cells_y},
                                                     dealii::Point<2>(layout.mesh_left * d, layout.band_start * d),
