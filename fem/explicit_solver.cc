@@ -58,6 +58,7 @@ ExplicitSolver::ExplicitSolver(const dealii::parallel::distributed::Triangulatio
   for (auto *v : {&mass_, &body_force_, &external_force_, &internal_force_, &displacement_, &increment_})
     v->reinit(owned, relevant, comm);
   velocity_.reinit(owned, comm);
+  added_force_.reinit(owned, comm);
 
   const unsigned int n_owned = owned.n_elements();
   const dealii::IndexSet x_dofs =
@@ -418,6 +419,7 @@ void ExplicitSolver::assemble_internal_force(const Vector &displacement_incremen
 void ExplicitSolver::assemble_external_force(double time)
 {
   external_force_ = body_force_;
+  added_force_ = 0.0;
   if (!boundary_conditions_.tractions.empty() || !boundary_conditions_.pressures.empty())
     {
       for (auto &t : boundary_conditions_.tractions)
@@ -455,11 +457,16 @@ void ExplicitSolver::take_step(double dt)
     prescribed_ = prescribed_displacements(new_time);
   const auto &prescribed = prescribed_;
   const auto &owned = space_.locally_owned_dofs();
+  // The ledger's terms of this step (ExplicitEnergyLedger): each force times du = dt_velocity
+  // (v_n-1/2 + v_n+1/2) / 2, which makes them add up to the change of the kinetic energy.
+  double internal_work = 0.0, damping_work = 0.0, gravity_work = 0.0, load_work = 0.0, added_work = 0.0;
+  double kinetic_before = 0.0;
   for (unsigned int i = 0; i < velocity_.locally_owned_size(); ++i)
     {
       if (constrained_[i])
         continue;
-      double force = external_force_.local_element(i) - internal_force_.local_element(i);
+      const double undamped_force = external_force_.local_element(i) - internal_force_.local_element(i);
+      double force = undamped_force;
       const double v = velocity_.local_element(i);
       // The local damping opposes the velocity at t_n, where the force acts (v_{n-1/2} plus half
       // a step of undamped acceleration, as Yade's second-order Cundall damping): the sign of
@@ -471,10 +478,27 @@ void ExplicitSolver::take_step(double dt)
       if (damped && alpha_local > 0.0 && v_now != 0.0)
         force -= alpha_local * std::abs(force) * (v_now > 0.0 ? 1.0 : -1.0);
       // (v+ - v-)/dt = f/m - alpha (v+ + v-)/2
-      velocity_.local_element(i) =
-        ((1.0 - 0.5 * alpha_i * dt_velocity) * v + dt_velocity * force / mass_.local_element(i)) /
-        (1.0 + 0.5 * alpha_i * dt_velocity);
+      const double m = mass_.local_element(i);
+      const double v_new = ((1.0 - 0.5 * alpha_i * dt_velocity) * v + dt_velocity * force / m) /
+                           (1.0 + 0.5 * alpha_i * dt_velocity);
+      velocity_.local_element(i) = v_new;
+      const double v_mean = 0.5 * (v + v_new), du = dt_velocity * v_mean;
+      kinetic_before += 0.5 * m * v * v;
+      internal_work += internal_force_.local_element(i) * du;
+      // The local damping's force, undamped_force - force, and the mass-proportional alpha m v_mean.
+      damping_work += (undamped_force - force + alpha_i * m * v_mean) * du;
+      const double added = added_force_.local_element(i), body = body_force_.local_element(i);
+      gravity_work += body * du;
+      added_work += added * du;
+      load_work += (external_force_.local_element(i) - body - added) * du;
     }
+  if (n_steps_ == 0)
+    ledger_.initial_kinetic = kinetic_before;
+  ledger_.internal_work += internal_work;
+  ledger_.damping_work += damping_work;
+  ledger_.gravity_work += gravity_work;
+  ledger_.load_work += load_work;
+  ledger_.added_force_work += added_work;
   for (const auto &entry : prescribed)
     {
       const unsigned int i = owned.index_within_set(entry.first);
@@ -555,6 +579,29 @@ double ExplicitSolver::kinetic_energy() const
   for (unsigned int i = 0; i < velocity_.locally_owned_size(); ++i)
     energy += 0.5 * mass_.local_element(i) * velocity_.local_element(i) * velocity_.local_element(i);
   return dealii::Utilities::MPI::sum(energy, space_.communicator());
+}
+
+ExplicitEnergyLedger ExplicitSolver::energy_ledger() const
+{
+  double kinetic = 0.0;
+  for (unsigned int i = 0; i < velocity_.locally_owned_size(); ++i)
+    if (!constrained_[i])
+      kinetic += 0.5 * mass_.local_element(i) * velocity_.local_element(i) * velocity_.local_element(i);
+  const MPI_Comm comm = space_.communicator();
+  ExplicitEnergyLedger sum;
+  sum.kinetic = dealii::Utilities::MPI::sum(kinetic, comm);
+  if (n_steps_ == 0)
+    {
+      sum.initial_kinetic = sum.kinetic;
+      return sum;
+    }
+  sum.initial_kinetic = dealii::Utilities::MPI::sum(ledger_.initial_kinetic, comm);
+  sum.internal_work = dealii::Utilities::MPI::sum(ledger_.internal_work, comm);
+  sum.damping_work = dealii::Utilities::MPI::sum(ledger_.damping_work, comm);
+  sum.gravity_work = dealii::Utilities::MPI::sum(ledger_.gravity_work, comm);
+  sum.load_work = dealii::Utilities::MPI::sum(ledger_.load_work, comm);
+  sum.added_force_work = dealii::Utilities::MPI::sum(ledger_.added_force_work, comm);
+  return sum;
 }
 
 double ExplicitSolver::out_of_balance_ratio() const

@@ -43,6 +43,32 @@ struct ExplicitDamping
   double local = 0.0;             ///< alpha_l in f_d = alpha_l |f| sign(v), in [0, 1) (PFC's default 0.7) [-]
 };
 
+/// The continuum's energy ledger since the first step [J/m], from the work of each force on the
+/// free DoFs (those without a prescribed displacement). Central differences keep an exact discrete
+/// balance: M (v_n+1/2 - v_n-1/2) = dt_n f_n dotted with the mean velocity (v_n+1/2 + v_n-1/2) / 2
+/// gives the change of 1/2 v.M v over the step as f_n . du_n, du_n = dt_n (v_n+1/2 + v_n-1/2) / 2
+/// (dt_n the mean of the two half steps); each force's work is booked with that du_n, so the
+/// terms close to round-off whatever the soil does. The internal work is the energy the soil took
+/// from the start (its elastic energy change plus its plastic work, with the initial stress's work
+/// against the displacement; weighted by the energy weights), the sheet's interface forces on the
+/// soil included; an embedded sheet's own energy is not in the ledger. Supports that move do work
+/// on their DoFs that is not booked either (fixed supports do none).
+struct ExplicitEnergyLedger
+{
+  double kinetic = 0.0;           ///< 1/2 v.M v of the half-step velocity on the free DoFs, now
+  double initial_kinetic = 0.0;   ///< the same before the first step
+  double internal_work = 0.0;     ///< sum f_int . du: elastic energy stored and plastic work
+  double damping_work = 0.0;      ///< dissipated by the mass-proportional and the local damping
+  double gravity_work = 0.0;      ///< of the body force rho g
+  double load_work = 0.0;         ///< of the boundary tractions and pressures
+  double added_force_work = 0.0;  ///< of the forces added through add_external_force (a coupling's)
+  /// Zero to round-off: kinetic energy gained + internal work + dissipated - work supplied.
+  double balance() const
+  {
+    return kinetic - initial_kinetic + internal_work + damping_work - gravity_work - load_work - added_force_work;
+  }
+};
+
 struct ExplicitSettings
 {
   unsigned int element_degree = 1; ///< 1 (Q1) or 2 (Q2); Q1 is cheaper per step and per stable step
@@ -137,10 +163,16 @@ public:
   /// Adds `force` [N/m] to the external force at time() on owned DoF `local_dof` (local index):
   /// the next step applies it with the loads (a coupling's force on the continuum). The external
   /// force is rebuilt at every step, so it acts for one step only.
-  void add_external_force(unsigned int local_dof, double force) { external_force_.local_element(local_dof) += force; }
+  void add_external_force(unsigned int local_dof, double force)
+  {
+    external_force_.local_element(local_dof) += force;
+    added_force_.local_element(local_dof) += force;
+  }
 
   /// Kinetic energy 1/2 v.M v of the half-step velocity [J/m]. Collective.
   double kinetic_energy() const;
+  /// The energy ledger since the first step (ExplicitEnergyLedger). Collective.
+  ExplicitEnergyLedger energy_ledger() const;
   /// |f_ext - f_int| over |f_int| + |f_ext| on the free DoFs at the last step (PFC's unbalanced
   /// force ratio, in the l2 norm): zero at static equilibrium [-]. Collective.
   double out_of_balance_ratio() const;
@@ -191,6 +223,9 @@ private:
   Vector body_force_;         ///< rho g, owned
   Vector external_force_;     ///< f_ext at the last step, owned
   Vector internal_force_;     ///< f_int at the last step, owned
+  Vector added_force_;        ///< the part of external_force_ added through add_external_force, owned
+  /// This rank's share of the ledger's accumulated terms (energy_ledger() sums the ranks).
+  ExplicitEnergyLedger ledger_;
   Vector velocity_;           ///< v_{n-1/2}, owned
   Vector displacement_;       ///< u_n, ghosted
   Vector increment_;          ///< u_{n+1} - u_n, ghosted

@@ -244,6 +244,127 @@ TEST(ExplicitSolver, UndampedDofsFallFreely)
   EXPECT_THROW(exempt.set_undamped_dofs({static_cast<unsigned int>(all.size())}), std::invalid_argument);
 }
 
+// The energy ledger (ExplicitEnergyLedger) against closed forms. A linear elastic layer loaded from
+// rest, without initial stress, by constant forces (its weight, a strip pressure and a point force
+// added through add_external_force at every step) and damped to rest:
+// - the internal work is the elastic energy 1/2 u . f_int, whatever the path (the physics);
+// - a constant force's work is f . (u_N + u_N-1) / 2 - f . u_1 / 4: the telescoped sum of
+//   f . dt (v_n-1/2 + v_n+1/2) / 2 over the steps, the first a half step from rest. It is f . u_N
+//   but for the start-up term, large here (the point force kicks its node by u_1 = 0.27 u_N in the
+//   first step: 7 % of its work), O(dt^2) for a smooth load;
+// - the damping took the rest, and the terms add up to round-off.
+TEST(ExplicitSolver, EnergyLedgerOfALayerDampedToRest)
+{
+  const Layer layer;
+  Mesh mesh(MPI_COMM_WORLD);
+  make_layer_mesh(mesh, layer, 1, 16);
+  ExplicitSettings settings;
+  settings.density = layer.density;
+  settings.gravity = QuasiStaticSettings::gravity_down();
+  settings.damping.local = 0.5;
+  settings.damping.mass_proportional = 20.0;
+  ExplicitSolver solver(mesh, elastic_soil(layer.E, layer.nu), strip_loaded_layer(layer, 50e3), settings);
+  // The point force: 20 kN/m pulling up one y DoF of the top face (free: the sides hold x only).
+  const auto &owned = solver.space().locally_owned_dofs();
+  unsigned int loaded = 0;
+  {
+    const dealii::IndexSet top_y = dealii::DoFTools::extract_boundary_dofs(
+      solver.space().dof_handler(), dealii::ComponentMask(std::vector<bool>{false, true}), {top});
+    loaded = owned.index_within_set(*top_y.begin());
+    ASSERT_FALSE(solver.is_constrained(loaded));
+  }
+  const double point_force = 20e3;
+  ExplicitSolver::Vector u_first, u_before_last;
+  for (;;)
+    {
+      // Added for the next step, which the out-of-balance ratio then sees too.
+      solver.add_external_force(loaded, point_force);
+      if (solver.n_steps() >= 20000 || (solver.n_steps() >= 10 && solver.out_of_balance_ratio() < 1e-10))
+        break;
+      u_before_last = solver.displacement();
+      solver.step();
+      if (solver.n_steps() == 1)
+        u_first = solver.displacement();
+    }
+  ASSERT_LT(solver.out_of_balance_ratio(), 1e-10);
+
+  // Closed forms: the body force is g times the lumped mass (row sums of the consistent mass with
+  // rho g constant); the pressure's nodal load is f_ext - rho g - the point force.
+  const auto &u = solver.displacement(), &M = solver.lumped_mass(), &f_ext = solver.external_force(),
+             &f_int = solver.internal_force();
+  const dealii::IndexSet y_dofs = dealii::DoFTools::extract_dofs(solver.space().dof_handler(),
+                                                                 dealii::ComponentMask(std::vector<bool>{false, true}));
+  const auto path = [&](unsigned int i) {
+    return 0.5 * (u.local_element(i) + u_before_last.local_element(i)) - 0.25 * u_first.local_element(i);
+  };
+  double gravity_work = 0.0, load_work = 0.0, elastic = 0.0;
+  for (unsigned int i = 0; i < u.locally_owned_size(); ++i)
+    {
+      if (solver.is_constrained(i))
+        continue;
+      const double body = y_dofs.is_element(owned.nth_index_in_set(i)) ? -layer.g * M.local_element(i) : 0.0;
+      const double load = f_ext.local_element(i) - body - (i == loaded ? point_force : 0.0);
+      gravity_work += body * path(i);
+      load_work += load * path(i);
+      elastic += 0.5 * u.local_element(i) * f_int.local_element(i);
+    }
+  const double added_work = point_force * path(loaded);
+  const ExplicitEnergyLedger ledger = solver.energy_ledger();
+  const double supplied = ledger.gravity_work + ledger.load_work + ledger.added_force_work;
+  std::cout << "layer damped to rest in " << solver.n_steps() << " steps: gravity work " << ledger.gravity_work
+            << " J/m (closed form " << gravity_work << "), load " << ledger.load_work << " (" << load_work
+            << "), point force " << ledger.added_force_work << " (" << added_work << "; f u_N "
+            << point_force * u.local_element(loaded) << "), internal " << ledger.internal_work << " (1/2 u.f_int "
+            << elastic << "), damping " << ledger.damping_work << ", kinetic " << ledger.kinetic << ", balance "
+            << ledger.balance() << std::endl;
+  EXPECT_GT(ledger.gravity_work, 0.0);
+  EXPECT_GT(ledger.load_work, 0.0);
+  EXPECT_GT(ledger.added_force_work, 0.0);
+  EXPECT_NEAR(ledger.gravity_work, gravity_work, 1e-9 * gravity_work);
+  EXPECT_NEAR(ledger.load_work, load_work, 1e-9 * load_work);
+  EXPECT_NEAR(ledger.added_force_work, added_work, 1e-9 * added_work);
+  EXPECT_NEAR(ledger.internal_work, elastic, 1e-6 * elastic);
+  EXPECT_GT(ledger.damping_work, 0.3 * supplied);
+  EXPECT_EQ(ledger.initial_kinetic, 0.0);
+  EXPECT_LT(ledger.kinetic, 1e-15 * supplied);
+  EXPECT_LT(std::abs(ledger.balance()), 1e-12 * supplied);
+}
+
+// An elastic block falling freely: no strain, no damping on the exempt DoFs, so the weight's work
+// is the kinetic energy gained, 1/2 m (g t)^2 at the half-step time t; damped, the damping takes
+// its share and the ledger still closes.
+TEST(ExplicitSolver, EnergyLedgerOfAFreeFall)
+{
+  Mesh mesh(MPI_COMM_WORLD);
+  make_rectangle(mesh, 2, 2, Point<dim>(0, 0), Point<dim>(0.2, 0.2));
+  ExplicitSettings settings;
+  settings.density = 2000.0;
+  settings.gravity[1] = -9.81;
+  settings.damping.local = 0.7;
+  settings.damping.mass_proportional = 50.0;
+  ExplicitSolver exempt(mesh, elastic_soil(10e6, 0.25), BoundaryConditions{}, settings);
+  ExplicitSolver damped(mesh, elastic_soil(10e6, 0.25), BoundaryConditions{}, settings);
+  std::vector<unsigned int> all(exempt.velocity().locally_owned_size());
+  for (unsigned int i = 0; i < all.size(); ++i)
+    all[i] = i;
+  exempt.set_undamped_dofs(all);
+  for (int n = 0; n < 50; ++n)
+    {
+      exempt.step();
+      damped.step();
+    }
+  const double t = exempt.time() - 0.5 * exempt.time_step();
+  const double mass = 2000.0 * 0.2 * 0.2, closed_form = 0.5 * mass * 9.81 * t * 9.81 * t;
+  const ExplicitEnergyLedger free = exempt.energy_ledger(), slowed = damped.energy_ledger();
+  EXPECT_NEAR(free.kinetic, closed_form, 1e-10 * closed_form);
+  EXPECT_NEAR(free.gravity_work, closed_form, 1e-10 * closed_form);
+  EXPECT_EQ(free.damping_work, 0.0);
+  EXPECT_LT(std::abs(free.internal_work), 1e-10 * closed_form);
+  EXPECT_GT(slowed.damping_work, 0.1 * slowed.gravity_work);
+  EXPECT_LT(slowed.kinetic, 0.5 * closed_form);
+  EXPECT_LT(std::abs(slowed.balance()), 1e-12 * slowed.gravity_work);
+}
+
 TEST(ExplicitSolver, EnergyWeightScalesMassAndInternalForce)
 {
   const double E = 10e6, nu = 0.25, rho = 2000.0;
