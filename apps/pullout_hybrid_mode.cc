@@ -141,7 +141,9 @@ public:
              "continuum_out_of_balance_ratio,coupling_force_on_particles_x_N_per_m,"
              "coupling_force_on_particles_y_N_per_m,coupling_force_on_continuum_x_N_per_m,"
              "coupling_force_on_continuum_y_N_per_m,coupling_force_imbalance_N_per_m,particle_energy_J_per_m,"
-             "particle_kinetic_J_per_m,continuum_kinetic_J_per_m,coupling_energy_J_per_m,crossing_tension_N_per_m\n";
+             "particle_kinetic_J_per_m,continuum_kinetic_J_per_m,coupling_energy_J_per_m,crossing_tension_N_per_m,"
+             "particle_boundary_work_J_per_m,continuum_internal_work_J_per_m,continuum_damping_work_J_per_m,"
+             "continuum_gravity_work_J_per_m,coupling_work_on_continuum_J_per_m,energy_balance_error\n";
     file_.precision(10);
   }
 
@@ -154,11 +156,21 @@ public:
     largest_imbalance_ = std::max(largest_imbalance_, imbalance);
     largest_force_ = std::max(largest_force_, largest);
     const coupling::SheetCrossing *crossing = hybrid.stepper().sheet_crossing();
+    // The balance over the pull, from its first point (the coupled settling before it is not in it).
+    if (!start_)
+      start_ = d;
+    balance_error_ = coupling::energy_balance_error(*start_, d);
+    largest_balance_error_ = std::max(largest_balance_error_, std::abs(balance_error_));
+    const fem::ExplicitEnergyLedger &c = d.continuum_ledger, &c0 = start_->continuum_ledger;
     file_ << hybrid.stepper().time() << ',' << point.head_displacement << ',' << point.head_tension << ','
           << dem::unbalanced_force_ratio(hybrid.particle_system()) << ',' << hybrid.continuum().out_of_balance_ratio()
           << ',' << f.on_particles.x() << ',' << f.on_particles.y() << ',' << f.on_continuum.x() << ','
           << f.on_continuum.y() << ',' << imbalance << ',' << d.particle_energy << ',' << d.particle_kinetic << ','
-          << d.continuum_kinetic << ',' << d.coupling_energy << ',' << (crossing ? crossing->tension() : 0.0) << '\n';
+          << d.continuum_kinetic << ',' << d.coupling_energy << ',' << (crossing ? crossing->tension() : 0.0) << ','
+          << d.particle_budget.boundary_work - start_->particle_budget.boundary_work << ','
+          << c.internal_work - c0.internal_work << ',' << c.damping_work - c0.damping_work << ','
+          << c.gravity_work - c0.gravity_work << ',' << c.added_force_work - c0.added_force_work << ','
+          << balance_error_ << '\n';
   }
 
   void finish(Summary &summary)
@@ -168,12 +180,22 @@ public:
       throw std::runtime_error("writing " + path_.string() + " failed");
     summary.set("coupling_force_imbalance_max_N_per_m", largest_imbalance_);
     summary.set("coupling_force_max_N_per_m", largest_force_);
+    summary.set("energy_balance_error_relative", balance_error_);
+    summary.set("energy_balance_error_max_relative", largest_balance_error_);
+    summary.set("energy_balance_error_relative_definition",
+                "over the pull, from its first point: the change of the coupled system's energy (the particles' "
+                "stored + dissipated - the walls' and the clamp's work, the continuum's kinetic energy + internal "
+                "work + damping work - gravity work, the coupling's stored energy) over the largest change of "
+                "those terms (coupling::energy_balance_error); at the last point, and the largest |value| over the "
+                "points (max). With the sheet crossing into the continuum the continuum's sheet is not in it");
   }
 
 private:
   std::filesystem::path path_;
   std::ofstream file_;
   double largest_imbalance_ = 0.0, largest_force_ = 0.0;
+  std::optional<coupling::CouplingDiagnostics> start_;
+  double balance_error_ = 0.0, largest_balance_error_ = 0.0;
 };
 } // namespace
 

@@ -88,7 +88,7 @@ ColumnRecord geostatic_column(const CouplingMethod &method, const ColumnSpec &sp
 
   CoupledPatch patch;
   patch.geometry = g;
-  dem::DemSettings particle_settings = undamped_settings();
+  dem::DemSettings particle_settings = undamped_settings(spec.time_step);
   particle_settings.gravity = Vec2(-spec.gravity, 0.0);
   particle_settings.local_damping = spec.local_damping;
   dem::ParticleSet discs = patch_particles(g);
@@ -124,7 +124,11 @@ ColumnRecord geostatic_column(const CouplingMethod &method, const ColumnSpec &sp
     windows.push_back({x0 * d, (x0 + spec.window) * d, true});
   for (double x0 = spec.band_start + spec.band_width; x0 + spec.window <= spec.continuum_end + 1e-9; x0 += spec.window)
     windows.push_back({x0 * d, (x0 + spec.window) * d, false});
+  const CouplingDiagnostics start = patch.stepper->diagnostics();
   const auto measure = [&] {
+    record.energy_balance_error = energy_balance_error(start, patch.stepper->diagnostics());
+    record.largest_energy_balance_error =
+      std::max(record.largest_energy_balance_error, std::abs(record.energy_balance_error));
     std::vector<double> stress;
     for (const Window &w : windows)
       {

@@ -268,6 +268,30 @@ CouplingDiagnostics CoupledStepper::diagnostics() const
   d.coupling_energy = std::visit([](const auto &tie) { return tie.energy(); }, tie_) +
                       (crossing_ ? crossing_->energy() : 0.0);
   d.forces = forces_;
+  d.particle_budget = budget;
+  d.continuum_ledger = continuum_.energy_ledger();
   return d;
+}
+
+namespace
+{
+double dissipated(const dem::EnergyBudget &e)
+{
+  return e.friction_dissipated + e.viscous_dissipated + e.local_damping_dissipated + e.interface_friction_dissipated;
+}
+} // namespace
+
+double energy_balance_error(const CouplingDiagnostics &start, const CouplingDiagnostics &now)
+{
+  const dem::EnergyBudget &a = start.particle_budget, &b = now.particle_budget;
+  const fem::ExplicitEnergyLedger &c0 = start.continuum_ledger, &c = now.continuum_ledger;
+  const double scale = std::max({std::abs(b.gravitational - a.gravitational), std::abs(b.elastic - a.elastic),
+                                 std::abs(b.kinetic - a.kinetic), std::abs(b.sheet_elastic - a.sheet_elastic),
+                                 std::abs(dissipated(b) - dissipated(a)), std::abs(b.boundary_work - a.boundary_work),
+                                 std::abs(c.internal_work - c0.internal_work), std::abs(c.gravity_work - c0.gravity_work),
+                                 std::abs(c.load_work - c0.load_work), std::abs(c.damping_work - c0.damping_work),
+                                 std::abs(c.added_force_work - c0.added_force_work)});
+  const double change = now.ledger_total() - start.ledger_total();
+  return scale > 0.0 ? change / scale : change;
 }
 } // namespace geohybrid::coupling

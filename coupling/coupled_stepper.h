@@ -27,9 +27,16 @@
 // models (their rotation, which no constraint sets, stays damped). Penalty springs and interface contacts are forces like the others: damped everywhere.
 // Limits (checked, std::invalid_argument): one MPI rank; set up before the continuum steps (the
 // particles may have run before).
-// The diagnostics' energies are the conserved ones of an undamped run without body force: the
+// The diagnostics' total() is the conserved energy of an undamped run without body force: the
 // continuum elastic energy 1/2 u . f_int assumes a linear elastic soil without initial stress,
-// body force or loads on the continuum; with damping or gravity the total is not conserved.
+// body force or loads on the continuum. With gravity, damping, plasticity or an initial stress
+// (a pull-out), ledger_total() is the one that stays constant: the particles' budget (stored +
+// dissipated - supplied by walls and clamps) plus the continuum's work ledger (internal work +
+// damping work - gravity and load work: fem::ExplicitEnergyLedger; with its full-step kinetic
+// energy continuum_kinetic, at the particles' time) plus the coupling's stored energy. The coupling forces' work is left out on both sides (the particles'
+// budget does not book it, the ledger keeps it apart as added_force_work): being equal and
+// opposite, it cancels but for the coupling's stored energy and the two integrators' O(dt^2)
+// difference; energy_balance_error() measures what is left.
 #include "coupling/band_particles.h"
 #include "coupling/coupling_method.h"
 #include "coupling/interface_wall.h"
@@ -54,7 +61,24 @@ struct CouplingDiagnostics
   double coupling_energy = 0.0;    ///< penalty springs; interface contacts' springs and their dissipation; 0 for the multipliers
   double total() const { return particle_energy + continuum_kinetic + continuum_elastic + coupling_energy; }
   CouplingForceSums forces;        ///< the last coupling forces on each side
+  dem::EnergyBudget particle_budget;        ///< the particles' terms (particle_energy is its total())
+  fem::ExplicitEnergyLedger continuum_ledger; ///< the continuum's work since its first step
+  /// Constant when the coupled system's energy balance closes (see above) [J/m].
+  double ledger_total() const
+  {
+    const fem::ExplicitEnergyLedger &c = continuum_ledger;
+    return particle_energy + continuum_kinetic + c.internal_work + c.damping_work - c.gravity_work - c.load_work +
+           coupling_energy;
+  }
 };
+
+/// The balance's error between two diagnostics of one run: the change of ledger_total() over the
+/// largest change of the terms it sums (Abaqus's measure of an explicit run's energy balance:
+/// against the largest of the work supplied, the energy stored and the energy dissipated; the
+/// particles' gravitational, elastic and kinetic energies, their dissipation and boundary work,
+/// the continuum's internal, gravity, load and damping work and the work passed to it through the
+/// coupling) [-]. Zero when nothing changed.
+double energy_balance_error(const CouplingDiagnostics &start, const CouplingDiagnostics &now);
 
 /// How the band's particles are treated (methods 1 and 2).
 struct BandTreatment

@@ -283,6 +283,7 @@ struct ColumnSpec
   unsigned int max_steps = 60000;
   /// The band's inertia scaled (BandTreatment::scale_inertia): the statics must not change.
   bool scale_band_inertia = false;
+  double time_step = 0.0;             ///< [s]; 0: the coupled stable step (a smaller one is taken as given)
 };
 /// One stress window: its centre's height [m], the measured vertical stress and the weight above
 /// it (both as compressions, positive) [Pa], the model that measured it.
@@ -302,6 +303,11 @@ struct ColumnRecord
   /// continuum: round-off with the multipliers, the springs' stretch with the penalty), and the
   /// largest tied displacement |x_p - X_p| it compares with [m].
   double tied_mismatch = 0.0, tied_displacement = 0.0;
+  /// energy_balance_error (coupled_stepper.h) from the start to rest (gravity, damping and the
+  /// multipliers or springs in the ledger), and the largest |value| at the checks every 500 steps,
+  /// where the first ones, in the release's dynamics, weigh the two integrators' different
+  /// kinetic energies against a small scale [-].
+  double energy_balance_error = 0.0, largest_energy_balance_error = 0.0;
   double largest_relative_error() const;
   /// The step in vertical stress across the band: the continuum's first window above it against
   /// the lattice's last below it, each relative to its closed form: (s_c / s_c,0) - (s_p / s_p,0) [-].

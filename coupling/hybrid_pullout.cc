@@ -463,6 +463,9 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
   if (box_.bottom_shared)
     walls[tank_->tank.walls.base].translate(Vec2(0.0, -park));
   particles.request_neighbour_rebuild();
+  // The fill ran without the energy budget's booking (for speed); the coupled run books it, so
+  // that the coupled system's balance (coupled_stepper.h, ledger_total) can be checked.
+  particles.set_energy_tracking(true);
   stepper_ = std::make_unique<CoupledStepper>(
     particles, *continuum_, *band_, spec.region.method,
     BandTreatment{spec.region.driven_below_weight, spec.region.scale_band_inertia});

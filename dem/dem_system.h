@@ -180,6 +180,10 @@ public:
   /// contact its nodes can meet, its own interface included). For quasi-static runs.
   double required_sheet_mass_scaling(const SparSheet &sheet) const;
   const DemSettings &settings() const { return settings_; }
+  /// Books the energy budget's dissipated terms and boundary work from the next step on (true) or
+  /// stops booking them (DemSettings::track_energy): a tank is filled without them, for speed, and
+  /// a coupled pull turns them on to close its balance, whose changes then count from here.
+  void set_energy_tracking(bool on) { settings_.track_energy = on; }
   /// Local damping coefficient of the sheets' nodes, by default the bodies' (settings). Local
   /// damping opposes a node's velocity with alpha |F|: on a sheet sliding steadily one way
   /// through grains whose contacts fluctuate, it is a drag that does not vanish with the rate
