@@ -143,7 +143,8 @@ public:
              "coupling_force_on_continuum_y_N_per_m,coupling_force_imbalance_N_per_m,particle_energy_J_per_m,"
              "particle_kinetic_J_per_m,continuum_kinetic_J_per_m,coupling_energy_J_per_m,crossing_tension_N_per_m,"
              "particle_boundary_work_J_per_m,continuum_internal_work_J_per_m,continuum_damping_work_J_per_m,"
-             "continuum_gravity_work_J_per_m,coupling_work_on_continuum_J_per_m,energy_balance_error\n";
+             "continuum_gravity_work_J_per_m,coupling_work_on_continuum_J_per_m,continuum_sheet_truss_work_J_per_m,"
+             "continuum_sheet_interface_work_J_per_m,energy_balance_error\n";
     file_.precision(10);
   }
 
@@ -170,6 +171,8 @@ public:
           << d.particle_budget.boundary_work - start_->particle_budget.boundary_work << ','
           << c.internal_work - c0.internal_work << ',' << c.damping_work - c0.damping_work << ','
           << c.gravity_work - c0.gravity_work << ',' << c.added_force_work - c0.added_force_work << ','
+          << d.continuum_sheet_ledger.truss_work - start_->continuum_sheet_ledger.truss_work << ','
+          << d.continuum_sheet_ledger.interface_work - start_->continuum_sheet_ledger.interface_work << ','
           << balance_error_ << '\n';
   }
 
@@ -187,7 +190,8 @@ public:
                 "stored + dissipated - the walls' and the clamp's work, the continuum's kinetic energy + internal "
                 "work + damping work - gravity work, the coupling's stored energy) over the largest change of "
                 "those terms (coupling::energy_balance_error); at the last point, and the largest |value| over the "
-                "points (max). With the sheet crossing into the continuum the continuum's sheet is not in it");
+                "points (max). With the sheet crossing into the continuum, its part in the continuum is in it "
+                "(kinetic energy, truss and interface work, damping: fem::SheetEnergyLedger)");
   }
 
 private:

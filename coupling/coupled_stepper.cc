@@ -270,6 +270,8 @@ CouplingDiagnostics CoupledStepper::diagnostics() const
   d.forces = forces_;
   d.particle_budget = budget;
   d.continuum_ledger = continuum_.energy_ledger();
+  if (const fem::EmbeddedSheet *sheet = continuum_.sheet())
+    d.continuum_sheet_ledger = sheet->energy_ledger();
   return d;
 }
 
@@ -290,7 +292,10 @@ double energy_balance_error(const CouplingDiagnostics &start, const CouplingDiag
                                  std::abs(dissipated(b) - dissipated(a)), std::abs(b.boundary_work - a.boundary_work),
                                  std::abs(c.internal_work - c0.internal_work), std::abs(c.gravity_work - c0.gravity_work),
                                  std::abs(c.load_work - c0.load_work), std::abs(c.damping_work - c0.damping_work),
-                                 std::abs(c.added_force_work - c0.added_force_work)});
+                                 std::abs(c.added_force_work - c0.added_force_work),
+                                 std::abs(now.continuum_sheet_ledger.truss_work - start.continuum_sheet_ledger.truss_work),
+                                 std::abs(now.continuum_sheet_ledger.interface_work - start.continuum_sheet_ledger.interface_work),
+                                 std::abs(now.continuum_sheet_ledger.load_work - start.continuum_sheet_ledger.load_work)});
   const double change = now.ledger_total() - start.ledger_total();
   return scale > 0.0 ? change / scale : change;
 }

@@ -33,7 +33,8 @@
 // (a pull-out), ledger_total() is the one that stays constant: the particles' budget (stored +
 // dissipated - supplied by walls and clamps) plus the continuum's work ledger (internal work +
 // damping work - gravity and load work: fem::ExplicitEnergyLedger; with its full-step kinetic
-// energy continuum_kinetic, at the particles' time) plus the coupling's stored energy. The coupling forces' work is left out on both sides (the particles'
+// energy continuum_kinetic, at the particles' time; with a sheet crossing into the continuum, its
+// part there: fem::SheetEnergyLedger) plus the coupling's stored energy. The coupling forces' work is left out on both sides (the particles'
 // budget does not book it, the ledger keeps it apart as added_force_work): being equal and
 // opposite, it cancels but for the coupling's stored energy and the two integrators' O(dt^2)
 // difference; energy_balance_error() measures what is left.
@@ -63,12 +64,17 @@ struct CouplingDiagnostics
   CouplingForceSums forces;        ///< the last coupling forces on each side
   dem::EnergyBudget particle_budget;        ///< the particles' terms (particle_energy is its total())
   fem::ExplicitEnergyLedger continuum_ledger; ///< the continuum's work since its first step
-  /// Constant when the coupled system's energy balance closes (see above) [J/m].
+  /// The continuum's embedded sheet's (a sheet crossing into the continuum); zero without one.
+  fem::SheetEnergyLedger continuum_sheet_ledger;
+  /// Constant when the coupled system's energy balance closes (see above) [J/m]. The sheet's
+  /// load work is the crossing's force on the continuum's part: a coupling force, left out as
+  /// the continuum's added_force_work is (the crossing's stored energy is in coupling_energy).
   double ledger_total() const
   {
     const fem::ExplicitEnergyLedger &c = continuum_ledger;
+    const fem::SheetEnergyLedger &s = continuum_sheet_ledger;
     return particle_energy + continuum_kinetic + c.internal_work + c.damping_work - c.gravity_work - c.load_work +
-           coupling_energy;
+           s.kinetic + s.truss_work + s.interface_work + s.damping_work - s.clamp_work + coupling_energy;
   }
 };
 

@@ -51,8 +51,9 @@ struct ExplicitDamping
 /// terms close to round-off whatever the soil does. The internal work is the energy the soil took
 /// from the start (its elastic energy change plus its plastic work, with the initial stress's work
 /// against the displacement; weighted by the energy weights), the sheet's interface forces on the
-/// soil included; an embedded sheet's own energy is not in the ledger. Supports that move do work
-/// on their DoFs that is not booked either (fixed supports do none).
+/// soil included; an embedded sheet's own energy is in its ledger (SheetEnergyLedger,
+/// EmbeddedSheet::energy_ledger). Supports that move do work on their DoFs that is not booked
+/// (fixed supports do none).
 struct ExplicitEnergyLedger
 {
   double kinetic = 0.0;           ///< 1/2 v.M v of the half-step velocity on the free DoFs, now

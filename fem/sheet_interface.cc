@@ -465,6 +465,8 @@ void EmbeddedSheet::advance(double dt, double previous_dt, double mass_proportio
                             double new_time)
 {
   const double dt_velocity = 0.5 * (previous_dt + dt), alpha = mass_proportional_damping;
+  // The ledger's terms of this step (SheetEnergyLedger), booked as ExplicitSolver::take_step does.
+  double kinetic_before = 0.0, truss_work = 0.0, interface_work = 0.0, damping_work = 0.0, load_work = 0.0;
   for (std::size_t k = 0; k < sheet_.n_nodes(); ++k)
     {
       if (clamped_[k])
@@ -472,23 +474,59 @@ void EmbeddedSheet::advance(double dt, double previous_dt, double mass_proportio
       const double m = node_mass(k);
       for (unsigned int c = 0; c < dim; ++c)
         {
-          double force = truss_force_[k][c] + interface_force_[k][c] + node_load_[k][c];
+          const double undamped_force = truss_force_[k][c] + interface_force_[k][c] + node_load_[k][c];
+          double force = undamped_force;
           const double v = velocity_[k][c];
           const double v_now = v + 0.5 * previous_dt * force / m; // as in ExplicitSolver::take_step
           if (local_damping > 0.0 && v_now != 0.0)
             force -= local_damping * std::abs(force) * (v_now > 0.0 ? 1.0 : -1.0);
-          velocity_[k][c] = ((1.0 - 0.5 * alpha * dt_velocity) * v + dt_velocity * force / m) /
-                            (1.0 + 0.5 * alpha * dt_velocity);
+          const double v_new =
+            ((1.0 - 0.5 * alpha * dt_velocity) * v + dt_velocity * force / m) / (1.0 + 0.5 * alpha * dt_velocity);
+          velocity_[k][c] = v_new;
+          const double v_mean = 0.5 * (v + v_new), du = dt_velocity * v_mean;
+          kinetic_before += 0.5 * m * v * v;
+          truss_work -= truss_force_[k][c] * du;
+          interface_work -= interface_force_[k][c] * du;
+          load_work += node_load_[k][c] * du;
+          damping_work += (undamped_force - force + alpha * m * v_mean) * du;
         }
       displacement_[k] += dt * velocity_[k];
     }
   std::fill(node_load_.begin(), node_load_.end(), Force());
+  double clamp_work = 0.0;
   for (const auto &c : clamps_)
     {
       const Force d = c.displacement(new_time);
-      velocity_[c.node] = (d - displacement_[c.node]) / dt;
+      const Force v_new = (d - displacement_[c.node]) / dt;
+      // The same du as a free node's, from the prescribed motion; the clamp holds the node
+      // against the truss and the interface (clamp_force()), so it supplies what they take.
+      const Force du = dt_velocity * 0.5 * (velocity_[c.node] + v_new);
+      truss_work -= truss_force_[c.node] * du;
+      interface_work -= interface_force_[c.node] * du;
+      clamp_work -= (truss_force_[c.node] + interface_force_[c.node]) * du;
+      velocity_[c.node] = v_new;
       displacement_[c.node] = d;
     }
+  if (!advanced_)
+    ledger_.initial_kinetic = kinetic_before;
+  advanced_ = true;
+  ledger_.truss_work += truss_work;
+  ledger_.interface_work += interface_work;
+  ledger_.damping_work += damping_work;
+  ledger_.load_work += load_work;
+  ledger_.clamp_work += clamp_work;
+}
+
+SheetEnergyLedger EmbeddedSheet::energy_ledger() const
+{
+  SheetEnergyLedger ledger = ledger_;
+  ledger.kinetic = 0.0;
+  for (std::size_t k = 0; k < sheet_.n_nodes(); ++k)
+    if (!clamped_[k])
+      ledger.kinetic += 0.5 * node_mass(k) * velocity_[k].norm_square();
+  if (!advanced_)
+    ledger.initial_kinetic = ledger.kinetic;
+  return ledger;
 }
 
 void EmbeddedSheet::add_node_mass(std::size_t k, double mass)

@@ -113,6 +113,29 @@ struct SheetClamp
   std::function<dealii::Tensor<1, dim>(double time)> displacement; ///< [m]
 };
 
+/// The sheet's own energy ledger since its first advance() [J/m], booked as the soil's
+/// (ExplicitEnergyLedger): each force on a free node times du = dt_v (v_n-1/2 + v_n+1/2) / 2, which
+/// central differences make add up to the change of the nodes' kinetic energy, so the terms close
+/// to round-off. A clamped node has no kinetic energy (inertia neglected, as clamp_force()): the
+/// forces on it are booked with its prescribed motion and the clamp supplies their sum. The
+/// interface's forces on the soil are in the soil's internal work (ExplicitEnergyLedger); the
+/// interface's own energy (its springs and its slip) is interface_work plus that share.
+struct SheetEnergyLedger
+{
+  double kinetic = 0.0;          ///< 1/2 m v.v of the free nodes' half-step velocity, now
+  double initial_kinetic = 0.0;  ///< the same before the first advance()
+  double truss_work = 0.0;       ///< taken by the truss: its strain energy (tension only, elastic)
+  double interface_work = 0.0;   ///< taken by the interface from the sheet's nodes
+  double damping_work = 0.0;     ///< dissipated by the mass-proportional and the local damping
+  double load_work = 0.0;        ///< of the forces added through add_node_load (a coupling's)
+  double clamp_work = 0.0;       ///< supplied by the clamps
+  /// Zero to round-off: kinetic energy gained + taken + dissipated - supplied.
+  double balance() const
+  {
+    return kinetic - initial_kinetic + truss_work + interface_work + damping_work - load_work - clamp_work;
+  }
+};
+
 class EmbeddedSheet
 {
 public:
@@ -168,6 +191,8 @@ public:
   double interface_normal_stress(std::size_t k) const { return normal_stress_[k]; }
   /// The arc length on the reference path of the soil point node k has slid to [m].
   double soil_point_arc_length(std::size_t k) const { return soil_points_[k].arc_length; }
+  /// The energy ledger since the first advance(), its kinetic energy that of now.
+  SheetEnergyLedger energy_ledger() const;
   const SheetPath &reference_path() const { return path_; }
 
 private:
@@ -191,5 +216,7 @@ private:
   std::vector<double> shear_stress_; ///< tau per face (shared)
   std::vector<double> normal_stress_; ///< sigma_nn per node (shared)
   std::vector<double> shared_;       ///< the per-step MPI sum's buffer
+  SheetEnergyLedger ledger_;         ///< the booked terms (its kinetic energy is computed when asked)
+  bool advanced_ = false;            ///< advance() was called
 };
 } // namespace geohybrid::fem
