@@ -65,17 +65,18 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "Number of OpenMP threads of the particles; dem and hybrid modes (fem mode runs on the MPI ranks "
                     "of mpirun) [-]");
   prm.declare_entry("checkpoint interval", "300", Patterns::Double(0.0),
-                    "dem mode only (hybrid mode writes none): wall-clock time between checkpoints (OUTPUT/checkpoint.h5: the filled tank, the pull, "
-                    "the rows recorded; one is also written when the tank is full); continue an interrupted run "
-                    "with 'geohybrid pullout FILE --resume'; 0 = never [s]");
+                    "dem and hybrid modes: wall-clock time between checkpoints (OUTPUT/checkpoint.h5: the filled tank, the pull, "
+                    "the rows recorded; one is also written when the tank is full; hybrid mode: OUTPUT/filled_box.h5 "
+                    "when the box is full, then checkpoint.h5 with the continuum's state, the set-up repeated from the "
+                    "box on resuming); continue an interrupted run with 'geohybrid pullout FILE --resume'; 0 = never [s]");
   prm.declare_entry("stop after steps", "0", Patterns::Integer(0),
-                    "dem mode: stop the pull after this many time steps of this invocation, writing a checkpoint "
+                    "dem and hybrid modes: stop the pull after this many time steps of this invocation, writing a checkpoint "
                     "(to split a long run into jobs, each continued with --resume); 0 = run to the end [-]");
   prm.declare_entry("mode", "dem", Patterns::Selection("dem|fem|hybrid"),
                     "Soil model: dem (discrete elements everywhere, subsections Filling and Soil/Particle contact); "
                     "fem (a deal.II continuum, subsection Continuum); hybrid (particles in a box round the sheet, "
                     "the continuum elsewhere: the input of dem mode plus subsection Hybrid and the soil of "
-                    "subsection Continuum; no field outputs, no checkpoints). All modes write the same curve "
+                    "subsection Continuum; no field outputs). All modes write the same curve "
                     "files [-]");
 
   prm.enter_subsection("Tank");
@@ -503,15 +504,13 @@ int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm com
     set_parameter(prm, path, value);
   const std::string where = "input file '" + input_file + "'";
   const std::string mode = prm.get("mode");
-  if (resume && mode == "hybrid")
-    throw std::invalid_argument(where + ": --resume is not available for 'mode' = hybrid (a coupled run writes no "
-                                "checkpoints yet): run it again without --resume");
-  if (resume && mode != "dem")
-    throw std::invalid_argument(where + ": --resume continues a run of 'mode' = dem only");
+  if (resume && mode == "fem")
+    throw std::invalid_argument(where + ": --resume continues a run of 'mode' = dem or hybrid only (fem mode writes "
+                                "no checkpoints): run it again without --resume");
   // Hybrid mode fills its particle box from the whole tank's Filling: checked as in dem mode.
   const PullOutInput in = parse_pullout(prm, where, mode != "fem");
   if (mode == "hybrid")
-    return run_pullout_hybrid_mode(prm, in, where);
+    return run_pullout_hybrid_mode(prm, in, where, resume);
   return mode == "dem" ? run_pullout_dem_mode(prm, in, where, resume)
                        : run_pullout_fem_mode(prm, in, where, communicator);
 }

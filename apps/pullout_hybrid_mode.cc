@@ -4,13 +4,16 @@
 #include "apps/pullout_output.h"
 #include "apps/run_directory.h"
 
+#include "coupling/hybrid_checkpoint.h"
 #include "coupling/hybrid_pullout.h"
 #include "dem/conventions.h"
 #include "dem/measurements.h"
+#include "dem/tank_filling.h"
 
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -127,10 +130,13 @@ std::string method_name(const coupling::CouplingMethod &method)
 }
 
 /// coupling_diagnostics.csv: the coupling's diagnostics at each point of the curve (issue 6:
-/// "diagnostics every output step"), and their extremes for the summary.
+/// "diagnostics every output step"), and their extremes for the summary. Its rows are kept as
+/// numbers, so that a checkpoint can hold them and a resumed run write them again as they were.
 class DiagnosticsFile
 {
 public:
+  static constexpr std::size_t n_columns = 23;
+
   explicit DiagnosticsFile(const std::filesystem::path &directory)
     : path_(directory / "coupling_diagnostics.csv")
     , file_(path_)
@@ -148,6 +154,9 @@ public:
     file_.precision(10);
   }
 
+  /// The balance is measured from `start`: the diagnostics at the pull's first point.
+  void set_start(const coupling::CouplingDiagnostics &start) { start_ = start; }
+
   void add(const dem::PullPoint &point, coupling::HybridPullOut &hybrid)
   {
     const coupling::CouplingDiagnostics d = hybrid.stepper().diagnostics();
@@ -163,17 +172,57 @@ public:
     balance_error_ = coupling::energy_balance_error(*start_, d);
     largest_balance_error_ = std::max(largest_balance_error_, std::abs(balance_error_));
     const fem::ExplicitEnergyLedger &c = d.continuum_ledger, &c0 = start_->continuum_ledger;
-    file_ << hybrid.stepper().time() << ',' << point.head_displacement << ',' << point.head_tension << ','
-          << dem::unbalanced_force_ratio(hybrid.particle_system()) << ',' << hybrid.continuum().out_of_balance_ratio()
-          << ',' << f.on_particles.x() << ',' << f.on_particles.y() << ',' << f.on_continuum.x() << ','
-          << f.on_continuum.y() << ',' << imbalance << ',' << d.particle_energy << ',' << d.particle_kinetic << ','
-          << d.continuum_kinetic << ',' << d.coupling_energy << ',' << (crossing ? crossing->tension() : 0.0) << ','
-          << d.particle_budget.boundary_work - start_->particle_budget.boundary_work << ','
-          << c.internal_work - c0.internal_work << ',' << c.damping_work - c0.damping_work << ','
-          << c.gravity_work - c0.gravity_work << ',' << c.added_force_work - c0.added_force_work << ','
-          << d.continuum_sheet_ledger.truss_work - start_->continuum_sheet_ledger.truss_work << ','
-          << d.continuum_sheet_ledger.interface_work - start_->continuum_sheet_ledger.interface_work << ','
-          << balance_error_ << '\n';
+    const fem::SheetEnergyLedger &s = d.continuum_sheet_ledger, &s0 = start_->continuum_sheet_ledger;
+    const std::array<double, n_columns> row{{hybrid.stepper().time(),
+                                            point.head_displacement,
+                                            point.head_tension,
+                                            dem::unbalanced_force_ratio(hybrid.particle_system()),
+                                            hybrid.continuum().out_of_balance_ratio(),
+                                            f.on_particles.x(),
+                                            f.on_particles.y(),
+                                            f.on_continuum.x(),
+                                            f.on_continuum.y(),
+                                            imbalance,
+                                            d.particle_energy,
+                                            d.particle_kinetic,
+                                            d.continuum_kinetic,
+                                            d.coupling_energy,
+                                            crossing ? crossing->tension() : 0.0,
+                                            d.particle_budget.boundary_work - start_->particle_budget.boundary_work,
+                                            c.internal_work - c0.internal_work,
+                                            c.damping_work - c0.damping_work,
+                                            c.gravity_work - c0.gravity_work,
+                                            c.added_force_work - c0.added_force_work,
+                                            s.truss_work - s0.truss_work,
+                                            s.interface_work - s0.interface_work,
+                                            balance_error_}};
+    rows_.insert(rows_.end(), row.begin(), row.end());
+    write_row(row.data());
+  }
+
+  std::size_t n_rows() const { return rows_.size() / n_columns; }
+
+  /// Keeps the rows and the extremes in `command` (for a checkpoint).
+  void store(dem::CommandState &command) const
+  {
+    command.reals["diagnostics_rows"] = rows_;
+    command.reals["diagnostics_extremes"] = {largest_imbalance_, largest_force_, balance_error_,
+                                             largest_balance_error_};
+  }
+
+  /// A resumed run: the rows `saved` holds written again, the extremes taken back.
+  void restore(const dem::CommandState &saved)
+  {
+    rows_ = saved.real("diagnostics_rows");
+    if (rows_.size() % n_columns != 0)
+      throw std::runtime_error("checkpoint of 'pullout': the stored coupling diagnostics' rows are incomplete");
+    const std::vector<double> &e = saved.real("diagnostics_extremes", 4);
+    largest_imbalance_ = e[0];
+    largest_force_ = e[1];
+    balance_error_ = e[2];
+    largest_balance_error_ = e[3];
+    for (std::size_t r = 0; r < n_rows(); ++r)
+      write_row(&rows_[r * n_columns]);
   }
 
   void finish(Summary &summary)
@@ -195,15 +244,23 @@ public:
   }
 
 private:
+  void write_row(const double *row)
+  {
+    for (std::size_t k = 0; k < n_columns; ++k)
+      file_ << (k > 0 ? "," : "") << row[k];
+    file_ << '\n';
+  }
+
   std::filesystem::path path_;
   std::ofstream file_;
+  std::vector<double> rows_;
   double largest_imbalance_ = 0.0, largest_force_ = 0.0;
   std::optional<coupling::CouplingDiagnostics> start_;
   double balance_error_ = 0.0, largest_balance_error_ = 0.0;
 };
 } // namespace
 
-int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where)
+int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, bool resume)
 {
   if (dealii::Utilities::MPI::job_supports_mpi() && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     throw std::invalid_argument(where + ": 'mode' = hybrid runs in one process; run it without mpirun");
@@ -213,6 +270,8 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   };
   const dem::PullOutGeometry &g = in.tank.geometry;
   const coupling::HybridPullOutSpec spec = parse_hybrid(prm, in, where);
+  const double checkpoint_interval = prm.get_double("checkpoint interval");
+  const auto stop_after = static_cast<std::uint64_t>(prm.get_integer("stop after steps"));
   // The box is computed (and the margin checked) before a file is written; the refusals that need
   // the filled grains (the band against the sheet) come after the fill, with no summary.json.
   const coupling::ParticleBox box = coupling::particle_box(spec, where);
@@ -221,23 +280,60 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
     throw std::invalid_argument(where + ": parameter 'output directory' is empty");
 
   const std::filesystem::path out = prepare_output_directory(out_name);
+  // Checkpoints: the filled box (the particles only, written once: the set-up after it is
+  // repeated on resuming, deterministic and short), then, during the pull, the particles' and the
+  // continuum's states with the pull's progress and the rows recorded.
+  const std::filesystem::path box_file = out / "filled_box.h5", checkpoint_file = out / "checkpoint.h5";
+  if (!resume)
+    for (const auto &stale : {box_file, checkpoint_file})
+      std::filesystem::remove(stale); // never resume a stale one
   write_resolved_parameters(prm, out);
   std::cout << "geohybrid pullout: " << anchorage_description(g) << "; mode hybrid: " << box.n_particles << " particles in the box [" << number(box.x0, 4) << ", "
             << number(box.x1, 4) << "] x [" << number(box.y0, 4) << ", " << number(box.y1, 4) << "] m ("
             << in.tank.filling.n_particles << " for the whole tank), " << fem::to_string(spec.continuum.soil.kind)
             << " continuum, coupling " << method_name(spec.region.method) << std::endl;
 
-  // 1. The box filled, the continuum built and tied, both settled (the library's constructor).
+  // 1. The box filled (or taken from its checkpoint), the continuum built and tied, both settled.
   double fill_time = 0.0;
+  std::optional<dem::PullOutTank> filled;
+  if (resume && std::filesystem::exists(box_file))
+    {
+      dem::CommandState saved_box;
+      try
+        {
+          dem::DemSystemState state = dem::read_checkpoint(box_file, saved_box);
+          filled.emplace(dem::restore_pullout_tank(
+            std::move(state), dem::tank_settling_settings(box.box_tank.resolved_filling()), saved_box));
+        }
+      catch (const std::exception &e)
+        {
+          throw std::runtime_error("cannot resume from '" + box_file.string() + "' with " + where + ": " + e.what());
+        }
+      fill_time = saved_box.real("fill_wall_time_s", 1)[0];
+      std::cout << "pullout: resuming: the particle box of " << box_file.string() << " (filled in "
+                << number(fill_time, 4) << " s); the coupled set-up again" << std::endl;
+    }
+  else
+    {
+      if (resume)
+        std::cout << "geohybrid pullout: no checkpoint in " << out.string()
+                  << " (the run stopped before its box was full): filling the box again from the start" << std::endl;
+      std::filesystem::remove(checkpoint_file);
+      ProgressReport fill_progress("filling the particle box", 1.0);
+      filled.emplace(dem::fill_pull_out_tank(box.box_tank, [&](double f) { fill_progress.update(f); }));
+      fill_progress.finish();
+      fill_time = seconds();
+      if (checkpoint_interval > 0.0)
+        {
+          dem::CommandState c;
+          dem::store_pullout_tank(*filled, c);
+          c.reals["fill_wall_time_s"] = {fill_time};
+          dem::write_checkpoint(filled->tank.system.export_state(), c, box_file);
+        }
+    }
   std::optional<coupling::HybridPullOut> hybrid;
-  {
-    ProgressReport fill_progress("filling the particle box", 1.0);
-    hybrid.emplace(spec, where, [&](double f) {
-      fill_progress.update(f);
-      fill_time = seconds(); // the last report is the end of the fill; the settling follows
-    });
-    fill_progress.finish();
-  }
+  hybrid.emplace(spec, where, std::move(*filled));
+  filled.reset();
   const double set_up_time = seconds();
   const coupling::HybridSetUp &s = hybrid->set_up();
   const dem::PullOutTank &tank = hybrid->particles();
@@ -269,24 +365,92 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
             << number(gamma_H / 1e3, 4) << " kPa" << std::endl;
 
   // 2. The pull: each point of the curve with the sheet as it is then (positions in the tank's
-  // frame; the box's frame is shifted by (x0, y0)).
-  PulloutOutput output(out, g.sheet_width, in.profiles_at);
-  ProgressReport progress("pulling", in.pull.final_displacement);
+  // frame; the box's frame is shifted by (x0, y0)); from its start or from the checkpoint's
+  // progress. The energy balance is measured from the pull's first point: the set-up's state,
+  // with the clamp started (a resumed run has just repeated the set-up: the same state).
+  dem::DemSystem &system = hybrid->particle_system();
   DiagnosticsFile diagnostics(out);
-  std::size_t n_points = 0;
-  hybrid->pull(in.pull, [&](const dem::PullPoint &p) {
-    add_dem_sheet_point(output, tank, hybrid->particle_system().sheets()[0], p, dem::Vec2(box.x0, box.y0));
+  std::optional<dem::PullOut> pull;
+  pull.emplace(system, in.pull, hybrid->pull_step());
+  diagnostics.set_start(hybrid->stepper().diagnostics());
+  dem::CommandState saved;
+  const bool resumed = resume && std::filesystem::exists(checkpoint_file);
+  double earlier_wall_time = 0.0; // of the runs before this one, when resuming
+  std::optional<PulloutOutput> output;
+  if (resumed)
+    {
+      try
+        {
+          dem::DemSystemState state = dem::read_checkpoint(checkpoint_file, saved);
+          const std::optional<dem::PullProgress> progress = dem::restore_pull_progress(saved);
+          if (!progress)
+            throw std::runtime_error("it holds no pull");
+          hybrid->restore_state(std::move(state), coupling::restore_continuum_state(saved),
+                                saved.count("hybrid_pull_steps", 1)[0]);
+          pull.emplace(system, in.pull, *progress, hybrid->pull_step());
+          output.emplace(out, g.sheet_width, in.profiles_at, saved);
+          diagnostics.restore(saved);
+        }
+      catch (const std::exception &e)
+        {
+          throw std::runtime_error("cannot resume from '" + checkpoint_file.string() + "' with " + where + ": " + e.what());
+        }
+      earlier_wall_time = saved.real("wall_time_s", 1)[0];
+      std::cout << "pullout: resuming the pull at " << number(1e3 * pull->head_displacement(), 4) << " mm from "
+                << checkpoint_file.string() << std::endl;
+    }
+  else
+    output.emplace(out, g.sheet_width, in.profiles_at);
+  const double u_first = pull->head_displacement();
+  ProgressReport progress("pulling", in.pull.final_displacement - u_first);
+  const auto record = [&](const dem::PullPoint &p) {
+    add_dem_sheet_point(*output, tank, system.sheets()[0], p, dem::Vec2(box.x0, box.y0));
     diagnostics.add(p, *hybrid);
-    progress.update(p.head_displacement);
-    ++n_points;
-  });
+    progress.update(p.head_displacement - u_first);
+  };
+  const auto save_checkpoint = [&] {
+    dem::CommandState c;
+    c.name = "pullout";
+    c.reals["wall_time_s"] = {earlier_wall_time + seconds()};
+    dem::store_pull_progress(pull->progress(), c);
+    output->store(c);
+    diagnostics.store(c);
+    coupling::store_continuum_state(hybrid->continuum_state(), c);
+    c.counts["hybrid_pull_steps"] = {hybrid->pull_steps()};
+    dem::write_checkpoint(system.export_state(), c, checkpoint_file);
+  };
+  if (!resumed)
+    record(pull->start_point());
+  WallClockInterval checkpoint_due(checkpoint_interval);
+  std::uint64_t steps_now = 0;
+  while (!pull->finished())
+    {
+      if (pull->step())
+        record(pull->last_point());
+      ++steps_now;
+      const bool stop = stop_after > 0 && steps_now >= stop_after && !pull->finished();
+      if (checkpoint_due.due() || stop)
+        save_checkpoint();
+      if (stop)
+        {
+          std::cerr << '\n';
+          std::cout << "geohybrid pullout: stopped after " << steps_now << " steps as 'stop after steps' asks, at "
+                    << number(1e3 * pull->head_displacement(), 4) << " mm; continue with --resume (checkpoint "
+                    << checkpoint_file.string() << ")" << std::endl;
+          return 0;
+        }
+    }
+  pull->stop_clamp();
   progress.finish();
+  const std::size_t n_points = diagnostics.n_rows();
 
   // 3. The plot, then summary.json last.
-  output.finish("hybrid DEM-FEM", in.experimental_T_max, in.pull.final_displacement);
-  const double T_max = output.max_head_tension(), wall_time = seconds();
+  output->finish("hybrid DEM-FEM", in.experimental_T_max, in.pull.final_displacement);
+  if (checkpoint_interval > 0.0)
+    save_checkpoint(); // the finished pull: a later --resume has nothing left to do but the files
+  const double T_max = output->max_head_tension(), wall_time = earlier_wall_time + seconds();
   Summary summary;
-  output.fill_summary(summary, "hybrid", anchorage_name(g), in.experimental_T_max);
+  output->fill_summary(summary, "hybrid", anchorage_name(g), in.experimental_T_max);
   summary.set("n_particles", static_cast<double>(s.n_particles));
   summary.set("n_particles_full_tank", static_cast<double>(in.tank.filling.n_particles));
   summary.set("coupling_method", method_name(spec.region.method));
@@ -316,13 +480,14 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   summary.set("n_box_settling_steps", static_cast<double>(s.box_settling_steps));
   diagnostics.finish(summary);
   summary.set("n_curve_points", static_cast<double>(n_points));
+  summary.set("resumed_at_head_displacement_m", resumed ? u_first : std::nan("")); // null for a straight run
   summary.set("fill_wall_time_s", fill_time);
   summary.set("set_up_wall_time_s", set_up_time);
   summary.set("wall_time_s", wall_time);
   summary.write(out / "summary.json");
   std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m ("
             << number(T_max * g.sheet_width / 1e3, 4) << " kN for b = " << number(g.sheet_width, 3) << " m) at "
-            << number(1e3 * output.head_displacement_at_max(), 3) << " mm"
+            << number(1e3 * output->head_displacement_at_max(), 3) << " mm"
             << (in.experimental_T_max ? "; experiment " + number(*in.experimental_T_max / 1e3, 4) + " kN/m"
                                       : std::string())
             << "; " << number(wall_time, 4) << " s\nresults in " << out.string() << '\n';

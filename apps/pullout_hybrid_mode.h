@@ -12,8 +12,11 @@
 // The outputs are dem mode's curve files through PulloutOutput (pullout_curve.csv, the per-sheet
 // curve, sheet_displacements.csv, sheet_tension.csv in the tank's frame, pullout_curve.png),
 // parameters.prm, and summary.json last, with mode = hybrid, the box, the band, the coupling
-// method and the steps. Not written (yet): dem mode's field outputs ('Output/field outputs at') and
-// checkpoints; --resume is refused. One MPI rank, as dem mode.
+// method and the steps; coupling_diagnostics.csv. Checkpoints as dem mode's ('checkpoint
+// interval', 'stop after steps', --resume): filled_box.h5 once the box is full, then checkpoint.h5
+// with the continuum's state too; a resumed run repeats the coupled set-up from the filled box and
+// continues bit for bit. Not written (yet): dem mode's field outputs ('Output/field outputs at').
+// One MPI rank, as dem mode.
 #include "apps/pullout_input.h"
 
 #include <deal.II/base/parameter_handler.h>
@@ -27,5 +30,6 @@ void declare_hybrid_parameters(dealii::ParameterHandler &prm);
 
 /// Runs the hybrid pull-out of `in` (parsed from `prm`, the file named by `where`). Bad input
 /// throws std::invalid_argument naming the file and the entry before anything is written.
-int run_pullout_hybrid_mode(dealii::ParameterHandler &prm, const PullOutInput &in, const std::string &where);
+int run_pullout_hybrid_mode(dealii::ParameterHandler &prm, const PullOutInput &in, const std::string &where,
+                            bool resume = false);
 } // namespace geohybrid::apps

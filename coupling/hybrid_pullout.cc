@@ -243,6 +243,22 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
   if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
     throw std::invalid_argument(where + ": 'mode' = hybrid runs on one MPI rank");
   tank_ = std::make_unique<dem::PullOutTank>(dem::fill_pull_out_tank(box_.box_tank, progress));
+  set_up_coupled_model(spec, where);
+}
+
+HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &where, dem::PullOutTank filled_box)
+  : box_(particle_box(spec, where))
+{
+  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    throw std::invalid_argument(where + ": 'mode' = hybrid runs on one MPI rank");
+  if (filled_box.tank.system.particles().n_bodies() == 0)
+    throw std::invalid_argument(where + ": the filled particle box holds no particles");
+  tank_ = std::make_unique<dem::PullOutTank>(std::move(filled_box));
+  set_up_coupled_model(spec, where);
+}
+
+void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const std::string &where)
+{
   dem::DemSystem &particles = tank_->tank.system;
   const dem::ParticleSet &p = particles.particles();
   set_up_.n_particles = p.n_bodies();
@@ -307,6 +323,13 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
       // against gamma H = 2.3 kPa).
       crossing_rest_length = sheet.rest_length[n_kept - 1];
       particles.cut_sheet(0, n_kept);
+      // The tank's description follows the cut: the particles' part ends at its last node (the
+      // curve's "end of the lower part" displacement is then that node's; it read past the cut
+      // sheet's arrays before).
+      tank_->lower_part_end = std::min(tank_->lower_part_end, n_kept - 1);
+      tank_->first_node_inside = std::min(tank_->first_node_inside, n_kept - 1);
+      tank_->arc_length.resize(n_kept);
+      tank_->initial_nodes.resize(n_kept);
     }
   const double fill_ratio = spec.tank.filling.equilibrium_unbalanced_ratio;
   if (spec.region.fill_under_overburden && box_.top_shared)
@@ -513,9 +536,25 @@ std::vector<dem::PullPoint> HybridPullOut::pull(const dem::PullSpec &spec,
       if (record)
         record(point);
     },
-    [this] {
-      stepper_->step();
-      ++pull_steps_;
-    });
+    pull_step());
+}
+
+std::function<void()> HybridPullOut::pull_step()
+{
+  return [this] {
+    stepper_->step();
+    ++pull_steps_;
+  };
+}
+
+void HybridPullOut::restore_state(dem::DemSystemState particles, const fem::ExplicitSolverState &continuum,
+                                  std::uint64_t pull_steps)
+{
+  if (std::abs(particles.time_step - stepper_->time_step()) > 1e-15 * stepper_->time_step())
+    throw std::invalid_argument("hybrid pull-out: the saved particles' time step does not fit this set-up's "
+                                "coupled step");
+  tank_->tank.system.restore_state(std::move(particles));
+  continuum_->restore_state(continuum);
+  pull_steps_ = pull_steps;
 }
 } // namespace geohybrid::coupling

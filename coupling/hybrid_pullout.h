@@ -45,7 +45,9 @@
 // What is left out, on purpose or not yet: without a DEM region length the sheet must lie in the
 // DEM core, one branch clear of the band (`margin` is checked against that); wall contacts of the band's particles (at the front
 // wall, at the base) are not weighted (DemSystem::set_energy_weights); the continuum's walls are
-// smooth (the DEM's have the wall friction); one MPI rank; no checkpoints of the coupled run.
+// smooth (the DEM's have the wall friction); one MPI rank. Checkpoints: the filled box (a DEM
+// checkpoint) and, during the pull, the particles' and the continuum's states; a resumed run
+// repeats the set-up from the filled box (deterministic) and takes the states (restore_state).
 #include "coupling/continuum_region.h"
 #include "coupling/coupled_stepper.h"
 #include "coupling/coupling_method.h"
@@ -166,6 +168,10 @@ public:
   /// for bad input (naming the parameter), std::runtime_error if the fill or the settling fails.
   HybridPullOut(const HybridPullOutSpec &spec, const std::string &where,
                 const std::function<void(double)> &progress = {});
+  /// The same from a box filled earlier (the dem::PullOutTank of fill_particle_box, or one
+  /// restored from a checkpoint written after the fill: dem::restore_pullout_tank): the set-up
+  /// from there is the first constructor's, bit for bit.
+  HybridPullOut(const HybridPullOutSpec &spec, const std::string &where, dem::PullOutTank filled_box);
   HybridPullOut(const HybridPullOut &) = delete;
   HybridPullOut &operator=(const HybridPullOut &) = delete;
   ~HybridPullOut();
@@ -174,6 +180,21 @@ public:
   /// both models; `record` is called with each point.
   std::vector<dem::PullPoint> pull(const dem::PullSpec &spec,
                                    const std::function<void(const dem::PullPoint &)> &record = {});
+  /// What advances the coupled model one step of a pull (dem::PullOut's `advance`, for a pull
+  /// driven step by step): the stepper's step, counted in pull_steps(). The function refers to
+  /// this object.
+  std::function<void()> pull_step();
+
+  /// The coupled run's state between two steps of a pull, beyond the particles' own
+  /// (particle_system().export_state()): the continuum's (its sheet's included) and the pull's
+  /// step count. The rest (the band, its weights and ties, the crossing) is the set-up's, which
+  /// the constructors rebuild bit for bit from the same filled box.
+  fem::ExplicitSolverState continuum_state() const { return continuum_->export_state(); }
+  /// Continues a run from a checkpoint: `particles` and `continuum` exported at one moment of a
+  /// pull by a HybridPullOut set up from the same input and filled box. Throws
+  /// std::invalid_argument if they do not fit this one.
+  void restore_state(dem::DemSystemState particles, const fem::ExplicitSolverState &continuum,
+                     std::uint64_t pull_steps);
 
   const HybridSetUp &set_up() const { return set_up_; }
   std::uint64_t pull_steps() const { return pull_steps_; } ///< coupled steps taken by pull()
@@ -185,6 +206,10 @@ public:
   const OverlapBand &band() const { return *band_; }
 
 private:
+  /// What both constructors do once the box is filled (tank_): the core, the continuum, the tie
+  /// and the coupled settling.
+  void set_up_coupled_model(const HybridPullOutSpec &spec, const std::string &where);
+
   ParticleBox box_;
   std::unique_ptr<dem::PullOutTank> tank_;
   std::unique_ptr<dealii::parallel::distributed::Triangulation<fem::dim>> mesh_;

@@ -412,6 +412,14 @@ void PullOut::start()
   last_point_.head_tension = head_tension(system_);
 }
 
+PullOut::PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &progress, std::function<void()> advance)
+  : PullOut(system, spec, progress)
+{
+  if (!advance)
+    throw std::invalid_argument("pull-out: the function that advances the system is empty");
+  advance_ = std::move(advance);
+}
+
 PullOut::PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &progress)
   : system_(system), spec_(spec), progress_(progress)
 {

@@ -215,6 +215,9 @@ public:
   /// each step() calls `advance` instead of DemSystem::step, and the forces are not evaluated
   /// again at the start (that would apply the coupling's forces twice). Throws as the first.
   PullOut(DemSystem &system, const PullSpec &spec, std::function<void()> advance);
+  /// Continues such a pull from `progress` (the system and what advances it restored from the
+  /// same checkpoint). Throws as the first, or if `advance` is empty.
+  PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &progress, std::function<void()> advance);
 
   /// The point at the start (displacement 0, the tension of the filled tank).
   PullPoint start_point() const;

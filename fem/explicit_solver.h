@@ -29,6 +29,7 @@
 
 #include <deal.II/lac/la_parallel_vector.h>
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -86,6 +87,24 @@ struct ExplicitSettings
   void validate(const std::string &where) const;
 };
 
+/// What an ExplicitSolver changes as it runs, as plain numbers: a checkpoint keeps it to continue
+/// the run exactly, bit for bit (the mesh, the soil, the settings, the loads, the energy weights
+/// and an attached sheet's geometry are rebuilt from the input first). One rank: the vectors hold
+/// the locally owned DoFs in their local order.
+struct ExplicitSolverState
+{
+  double time = 0.0, previous_step = 0.0, time_step = 0.0;
+  std::uint64_t n_steps = 0;
+  std::vector<double> velocity, displacement, internal_force, external_force, added_force; ///< per owned DoF
+  /// Per material point of the locally owned cells, in the cells' order: the committed stress
+  /// and plastic strain (6 components each, sigma_zz included), the trial ones (6 + 6), then the
+  /// committed and the trial return regions: 26 numbers a point.
+  std::vector<double> material_points;
+  ExplicitEnergyLedger ledger;
+  bool has_sheet = false;
+  EmbeddedSheetState sheet;
+};
+
 class ExplicitSolver
 {
 public:
@@ -133,6 +152,13 @@ public:
   /// the mesh). An empty list damps every DoF again. Throws std::invalid_argument for an index
   /// that is not a locally owned DoF.
   void set_undamped_dofs(const std::vector<unsigned int> &local_dofs);
+
+  /// The state between two steps (ExplicitSolverState). Collective.
+  ExplicitSolverState export_state() const;
+  /// Takes `state`, exported by a solver built from the same input (mesh, soil, conditions,
+  /// settings, weights, sheet): its next step is the one the exporter would have taken. Throws
+  /// std::invalid_argument if the sizes do not fit this solver or its sheet. Collective.
+  void restore_state(const ExplicitSolverState &state);
 
   /// One step of time_step(). Collective.
   void step();

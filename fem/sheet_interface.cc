@@ -529,6 +529,62 @@ SheetEnergyLedger EmbeddedSheet::energy_ledger() const
   return ledger;
 }
 
+EmbeddedSheetState EmbeddedSheet::export_state() const
+{
+  EmbeddedSheetState s;
+  const auto flatten = [](const std::vector<Force> &v) {
+    std::vector<double> out;
+    out.reserve(dim * v.size());
+    for (const Force &f : v)
+      for (unsigned int c = 0; c < dim; ++c)
+        out.push_back(f[c]);
+    return out;
+  };
+  s.displacement = flatten(displacement_);
+  s.velocity = flatten(velocity_);
+  s.truss_force = flatten(truss_force_);
+  s.interface_force = flatten(interface_force_);
+  s.node_load = flatten(node_load_);
+  s.shear_stress = shear_stress_;
+  s.normal_stress = normal_stress_;
+  for (const SlidingSoilPoint &p : soil_points_)
+    {
+      s.arc_length.push_back(p.arc_length);
+      s.segment.push_back(p.segment);
+    }
+  s.ledger = ledger_;
+  s.advanced = advanced_;
+  return s;
+}
+
+void EmbeddedSheet::restore_state(const EmbeddedSheetState &s)
+{
+  const std::size_t n = sheet_.n_nodes();
+  for (const std::vector<double> *v : {&s.displacement, &s.velocity, &s.truss_force, &s.interface_force, &s.node_load})
+    if (v->size() != dim * n)
+      throw std::invalid_argument("sheet: a saved state of " + std::to_string(v->size() / dim) +
+                                  " nodes does not fit this sheet of " + std::to_string(n));
+  if (s.shear_stress.size() != n || s.normal_stress.size() != n || s.arc_length.size() != n || s.segment.size() != n)
+    throw std::invalid_argument("sheet: a saved state's per-node arrays do not fit this sheet of " + std::to_string(n) +
+                                " nodes");
+  const auto unflatten = [](const std::vector<double> &in, std::vector<Force> &out) {
+    for (std::size_t k = 0; k < out.size(); ++k)
+      for (unsigned int c = 0; c < dim; ++c)
+        out[k][c] = in[dim * k + c];
+  };
+  unflatten(s.displacement, displacement_);
+  unflatten(s.velocity, velocity_);
+  unflatten(s.truss_force, truss_force_);
+  unflatten(s.interface_force, interface_force_);
+  unflatten(s.node_load, node_load_);
+  shear_stress_ = s.shear_stress;
+  normal_stress_ = s.normal_stress;
+  for (std::size_t k = 0; k < n; ++k)
+    move_soil_point(k, s.arc_length[k], s.segment[k]);
+  ledger_ = s.ledger;
+  advanced_ = s.advanced;
+}
+
 void EmbeddedSheet::add_node_mass(std::size_t k, double mass)
 {
   if (!(mass >= 0.0) || !std::isfinite(mass))

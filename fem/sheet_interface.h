@@ -136,6 +136,18 @@ struct SheetEnergyLedger
   }
 };
 
+/// What an EmbeddedSheet changes as it runs, as plain numbers: a checkpoint keeps it to continue
+/// the run exactly (the sheet, its path and its clamps are rebuilt from the input). Per node,
+/// (x, y) pairs for the vectors.
+struct EmbeddedSheetState
+{
+  std::vector<double> displacement, velocity, truss_force, interface_force, node_load; ///< 2 per node
+  std::vector<double> shear_stress, normal_stress, arc_length;                       ///< 1 per node
+  std::vector<unsigned int> segment;                                                  ///< of each soil point
+  SheetEnergyLedger ledger;
+  bool advanced = false;
+};
+
 class EmbeddedSheet
 {
 public:
@@ -193,6 +205,13 @@ public:
   double soil_point_arc_length(std::size_t k) const { return soil_points_[k].arc_length; }
   /// The energy ledger since the first advance(), its kinetic energy that of now.
   SheetEnergyLedger energy_ledger() const;
+
+  /// The state between two steps (EmbeddedSheetState).
+  EmbeddedSheetState export_state() const;
+  /// Takes `state` (of a sheet built from the same input): the soil points are moved to the
+  /// stored arc lengths (their cells found again). Throws std::invalid_argument if its sizes do
+  /// not fit this sheet. Collective.
+  void restore_state(const EmbeddedSheetState &state);
   const SheetPath &reference_path() const { return path_; }
 
 private:
