@@ -58,11 +58,11 @@ void declare_hybrid_parameters(ParameterHandler &prm)
   prm.declare_entry("cell size", number(region.cell_size), Patterns::Double(),
                     "hybrid mode: the continuum's cells are at most this size (Q1, a generated mesh of the tank "
                     "less the DEM core; 'Continuum/cell size' is fem mode's); 0 = half the band width [m]");
-  prm.declare_entry("coupling method", "multipliers", Patterns::Selection("multipliers|penalty"),
-                    "hybrid mode: how the band's particles follow the continuum: multipliers (bridging domain, "
-                    "Lagrange multipliers: their velocities equal the continuum's, exactly) or penalty (springs of "
-                    "'penalty factor' x E x d / w); the non-overlapping interface has no band and is not available "
-                    "for the pull-out [-]");
+  prm.declare_entry("coupling method", "multipliers", Patterns::Selection("multipliers|penalty|interface"),
+                    "hybrid mode: how the particles meet the continuum: multipliers (bridging domain, Lagrange "
+                    "multipliers: the band's velocities equal the continuum's, exactly), penalty (springs of "
+                    "'penalty factor' x E x d / w), or interface (no band: the continuum's edges round the box are "
+                    "deformable walls the grains touch with their own contact law; not with 'DEM region length') [-]");
   prm.declare_entry("penalty factor", number(penalty.penalty_factor), Patterns::Double(),
                     "hybrid mode, coupling method = penalty: k_p / (E d / w), E 'Continuum/Young modulus', d the "
                     "particle's diameter, w the band width; stiffer ties better and lowers the stable step [-]");
@@ -104,6 +104,8 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
   r.cell_size = prm.get_double("cell size");
   if (prm.get("coupling method") == "penalty")
     r.method = coupling::PenaltyCoupling{prm.get_double("penalty factor")};
+  else if (prm.get("coupling method") == "interface")
+    r.method = coupling::InterfaceCoupling{};
   else
     r.method = coupling::LagrangeMultiplierCoupling{};
   r.driven_below_weight = prm.get_double("driven below weight");
@@ -126,6 +128,8 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
 
 std::string method_name(const coupling::CouplingMethod &method)
 {
+  if (std::holds_alternative<coupling::InterfaceCoupling>(method))
+    return "interface";
   return std::holds_alternative<coupling::PenaltyCoupling>(method) ? "penalty" : "multipliers";
 }
 

@@ -76,8 +76,9 @@ std::uint64_t step_until(dem::DemSystem &particles, const std::function<bool()> 
 /// Loads the top of the filled particle box with `stress` [Pa] through its lid (parked above the
 /// fill: brought down onto the highest grain, frictionless, servo-controlled) until the lid's
 /// stress is within 1 % of it and the unbalanced-force ratio below `target`, then parks the lid
-/// above the fill again with its law. Returns the steps taken and the lid's last stress.
-std::pair<std::uint64_t, double> settle_under_overburden(dem::DemSystem &particles, std::size_t lid_index, double stress,
+/// above the fill again with its law. Returns the steps taken, the lid's last stress and its
+/// height then (the box's top surface, in the box's frame) [-, Pa, m].
+std::tuple<std::uint64_t, double, double> settle_under_overburden(dem::DemSystem &particles, std::size_t lid_index, double stress,
                                                          double target, std::uint64_t max_steps,
                                                          const std::string &where)
 {
@@ -112,12 +113,13 @@ std::pair<std::uint64_t, double> settle_under_overburden(dem::DemSystem &particl
     });
   const double reached = lid_stress();
   dem::Wall &done = particles.walls()[lid_index];
+  const double surface = done.start.y();
   done.control = dem::WallControl::prescribed_velocity;
   done.velocity = Vec2::Zero();
   done.law = law_while_filling;
   done.translate(Vec2(0.0, parked_at - done.start.y()));
   particles.request_neighbour_rebuild();
-  return {steps, reached};
+  return {steps, reached, surface};
 }
 } // namespace
 
@@ -138,12 +140,10 @@ void HybridRegionSpec::validate(const std::string &where) const
           driven_below_weight, "must lie in [0, 1) [-]");
   if (const auto *penalty = std::get_if<PenaltyCoupling>(&method))
     penalty->validate(where, "Hybrid/penalty factor");
-  if (std::holds_alternative<InterfaceCoupling>(method))
-    throw std::invalid_argument(
-      where + ": parameter 'Hybrid/coupling method' = interface is not available for the pull-out: the "
-              "continuum settles onto the particle box's loosened top by more than a disc radius (1.8 mm on a "
-              "0.4 m x 0.2 m tank, tried), past what the interface's small-strain edges allow; use multipliers "
-              "or penalty");
+  if (std::holds_alternative<InterfaceCoupling>(method) && dem_region_length > 0.0)
+    throw std::invalid_argument(where + ": parameter 'Hybrid/coupling method' = interface cannot be combined with "
+                                        "'Hybrid/DEM region length' > 0 (the sheet crossing needs a band to cross): "
+                                        "use multipliers or penalty, or a DEM region length of 0");
 }
 
 void HybridPullOutSpec::validate(const std::string &where) const
@@ -286,9 +286,13 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
   // sides lie past the tank's walls (they idle).
   const double width = box_.x1 - box_.x0, height = box_.y1 - box_.y0;
   const double beyond = 1.0 + g.tank_length + g.fill_height;
-  const double cx0 = box_.left_shared ? pad + w : -beyond, cx1 = width + beyond;
-  const double cy0 = box_.bottom_shared ? pad + w : -beyond;
-  const double cy1 = box_.top_shared ? height - pad - w : height + beyond;
+  // Method 3 (the non-overlapping interface) has neither band nor pad: the core is the box, whose
+  // shared sides become the continuum's boundary edges that the grains touch.
+  const bool interface = std::holds_alternative<InterfaceCoupling>(spec.region.method);
+  const double inset = interface ? 0.0 : pad + w;
+  const double cx0 = box_.left_shared ? inset : -beyond, cx1 = width + beyond;
+  const double cy0 = box_.bottom_shared ? inset : -beyond;
+  double cy1 = box_.top_shared ? height - inset : height + beyond;
   if (!(cx1 > cx0 && cy1 > cy0))
     throw std::invalid_argument(where + ": parameter 'Hybrid/DEM region margin' = " + std::to_string(spec.region.margin) +
                                 " m leaves no DEM core inside the pad and the band");
@@ -332,16 +336,28 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
       tank_->initial_nodes.resize(n_kept);
     }
   const double fill_ratio = spec.tank.filling.equilibrium_unbalanced_ratio;
+  // The box's top surface (box frame): where the lid settled under the overburden, else the
+  // highest grain's top. Method 3's continuum starts there, on the grains, not at the lift's top
+  // above them (a gap the continuum would fall through: 1.8 mm measured on the test tank).
+  double top_surface = -std::numeric_limits<double>::infinity();
+  for (std::size_t d = 0; d < p.n_discs_total(); ++d)
+    top_surface = std::max(top_surface, p.disc_y[d] + p.disc_radius[d]);
   if (spec.region.fill_under_overburden && box_.top_shared)
     {
       set_up_.overburden = spec.tank.unit_weight * (g.fill_height - box_.y1);
-      std::tie(set_up_.box_settling_steps, set_up_.overburden_reached) = settle_under_overburden(
+      std::tie(set_up_.box_settling_steps, set_up_.overburden_reached, top_surface) = settle_under_overburden(
         particles, tank_->tank.walls.lid, set_up_.overburden, fill_ratio, spec.max_settling_steps, where);
     }
   else if (crossing)
     set_up_.box_settling_steps = step_until(
       particles, [&] { return dem::unbalanced_force_ratio(particles) < fill_ratio; }, spec.max_settling_steps,
       [&] { return where + ": the particle box did not settle after its sheet was cut"; });
+  if (interface && box_.top_shared)
+    {
+      cy1 = top_surface;
+      band_ = std::make_unique<OverlapBand>(
+        OverlapBand::around_convex_region({Vec2(cx0, cy0), Vec2(cx1, cy0), Vec2(cx1, cy1), Vec2(cx0, cy1)}, w));
+    }
   if (crossing)
     {
       // The continuum's part starts one segment (the DEM sheet's) past the last node in the core,
@@ -489,13 +505,27 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
   // The fill ran without the energy budget's booking (for speed); the coupled run books it, so
   // that the coupled system's balance (coupled_stepper.h, ledger_total) can be checked.
   particles.set_energy_tracking(true);
-  stepper_ = std::make_unique<CoupledStepper>(
-    particles, *continuum_, *band_, spec.region.method,
-    BandTreatment{spec.region.driven_below_weight, spec.region.scale_band_inertia});
+  if (interface)
+    {
+      // The grains touch the continuum's edges through their own contact law (the continuum is
+      // the same soil), frictional, never bonded.
+      InterfaceCoupling coupling = std::get<InterfaceCoupling>(spec.region.method);
+      coupling.boundary_id = dem_core_boundary_id;
+      coupling.contact = box_.box_tank.filling.particle_contact;
+      coupling.contact.tensile_strength = coupling.contact.shear_strength = 0.0;
+      coupling.contact.bond_new_contacts = false;
+      stepper_ = std::make_unique<CoupledStepper>(particles, *continuum_, coupling);
+    }
+  else
+    {
+      stepper_ = std::make_unique<CoupledStepper>(
+        particles, *continuum_, *band_, spec.region.method,
+        BandTreatment{spec.region.driven_below_weight, spec.region.scale_band_inertia});
+      set_up_.n_tied = stepper_->band_particles().size();
+      set_up_.n_driven = stepper_->band_particles().driven_body.size();
+    }
   if (crossing)
     stepper_->cross_sheet(0, crossing_rest_length);
-  set_up_.n_tied = stepper_->band_particles().size();
-  set_up_.n_driven = stepper_->band_particles().driven_body.size();
   set_up_.time_step = stepper_->time_step();
 
   // The overburden now comes through the band: settle together, both models below the fill's

@@ -21,7 +21,11 @@
 //   the DEM tank is (dem/tank_filling.h), its walls where the tank's are and temporary walls on
 //   its shared sides, with as many particles as the whole tank would have in its area (the same
 //   grain size); the sheet is laid on the lift at its depth.
-// - The DEM core is the box less, on each shared side, a pad of one branch length (the longest
+// - Method 3 (InterfaceCoupling) has no band: the DEM core is the box, the continuum's mesh the
+//   tank without it, its hole's edges the deformable walls the grains touch with their own contact
+//   law (frictional, no bonds); the hole's top is the box's settled top surface (where the lid
+//   stood under the overburden), not the lift's top above the grains. No sheet crossing with it.
+// - Methods 1 and 2: the DEM core is the box less, on each shared side, a pad of one branch length (the longest
 //   contact between two bodies: the driven particles of coupled_stepper.h) and the band (width w).
 //   The continuum's mesh is the tank's with the core's cells removed (continuum_region.h); the
 //   core's and the band's edges lie on mesh lines, the cells are uniform over the band and the

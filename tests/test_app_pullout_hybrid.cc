@@ -186,7 +186,8 @@ TEST(PullOutHybridMode, BadInputNamesTheEntryAndTheFile)
   {
     std::string extra, expected;
   };
-  for (const Case &c : {Case{"subsection Hybrid\n  set coupling method = interface\nend\n", "coupling method"},
+  for (const Case &c : {Case{"subsection Hybrid\n  set coupling method = interface\n  set DEM region length = 0.15\nend\n",
+                             "coupling method"},
                         Case{"subsection Hybrid\n  set coupling method = magic\nend\n", "coupling method"},
                         Case{"subsection Hybrid\n  set DEM region margin = -0.05\nend\n", "Hybrid/DEM region margin"},
                         Case{"subsection Hybrid\n  set DEM region margin = 1\nend\n", "Hybrid/DEM region margin"},
