@@ -64,7 +64,7 @@ void print_usage(std::ostream &out)
   out << "geohybrid: 2D DEM of soil coupled with a deal.II continuum, for geosynthetic anchorages\n\n"
          "usage: geohybrid COMMAND FILE.prm|FILE.json [--resume]\n"
          "       geohybrid COMMAND --print-parameters   (every parameter, default, unit and meaning)\n"
-         "       geohybrid pullout FILE.prm --seeds N   (N fills, seeds s, s+1, ...; the averaged curve)\n"
+         "       geohybrid pullout FILE.prm --seeds N   (N fills, seeds s, s+1, ...; the averaged curve; under mpirun spread over the ranks)\n"
          "       geohybrid compare DIR1 DIR2 ... [--output FILE.png]   (pull-out curves in one PNG)\n"
          "       geohybrid --help\n\n"
          "--resume continues the run of FILE from its last checkpoint, OUTPUT/checkpoint.h5\n"

@@ -297,9 +297,10 @@ namespace
 /// pull continue from OUTPUT/checkpoint.h5 (one is written when the tank is full, then every
 /// 'checkpoint interval' s of wall time): the result files are those of a run that never
 /// stopped, bit for bit.
-int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, bool resume)
+int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, bool resume,
+                         MPI_Comm communicator)
 {
-  if (dealii::Utilities::MPI::job_supports_mpi() && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+  if (dealii::Utilities::MPI::job_supports_mpi() && dealii::Utilities::MPI::n_mpi_processes(communicator) > 1)
     throw std::invalid_argument(where + ": 'mode' = dem runs in one process (its threads: 'threads'); run it "
                                 "without mpirun, or use 'set mode = fem'");
   const dem::PullOutGeometry &g = in.tank.geometry;
@@ -510,8 +511,8 @@ int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm com
   // Hybrid mode fills its particle box from the whole tank's Filling: checked as in dem mode.
   const PullOutInput in = parse_pullout(prm, where, mode != "fem");
   if (mode == "hybrid")
-    return run_pullout_hybrid_mode(prm, in, where, resume);
-  return mode == "dem" ? run_pullout_dem_mode(prm, in, where, resume)
+    return run_pullout_hybrid_mode(prm, in, where, resume, communicator);
+  return mode == "dem" ? run_pullout_dem_mode(prm, in, where, resume, communicator)
                        : run_pullout_fem_mode(prm, in, where, communicator);
 }
 } // namespace geohybrid::apps

@@ -19,8 +19,9 @@ void declare_pullout_parameters(dealii::ParameterHandler &prm);
 /// Entries set after the input file is read, as (path, value): ("Filling/seed", "4").
 using ParameterOverrides = std::vector<std::pair<std::string, std::string>>;
 int run_pullout_command(const std::string &input_file, bool resume, const ParameterOverrides &overrides = {});
-/// The same with the continuum (mode = fem) on the ranks of `communicator` (the other form takes
-/// MPI_COMM_WORLD); dem mode runs in one process.
+/// The same on the ranks of `communicator` (the other form takes MPI_COMM_WORLD): mode = fem
+/// distributes its continuum over them; dem and hybrid modes run in one process and refuse a
+/// communicator of several ranks (an ensemble member runs on MPI_COMM_SELF: pullout_seeds.h).
 int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm communicator,
                         const ParameterOverrides &overrides = {});
 } // namespace geohybrid::apps

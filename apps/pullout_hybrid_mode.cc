@@ -264,9 +264,10 @@ private:
 };
 } // namespace
 
-int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, bool resume)
+int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, bool resume,
+                            MPI_Comm communicator)
 {
-  if (dealii::Utilities::MPI::job_supports_mpi() && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+  if (dealii::Utilities::MPI::job_supports_mpi() && dealii::Utilities::MPI::n_mpi_processes(communicator) > 1)
     throw std::invalid_argument(where + ": 'mode' = hybrid runs in one process; run it without mpirun");
   const auto start_time = std::chrono::steady_clock::now();
   const auto seconds = [&] {

@@ -6,6 +6,8 @@
 #include "pullout_input.h"
 #include "run_directory.h"
 
+#include <deal.II/base/mpi.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -43,8 +45,15 @@ Spread spread_of(const std::vector<double> &v)
 }
 } // namespace
 
-int run_pullout_seeds(const std::string &input_file, int n_seeds)
+int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm communicator)
 {
+  const bool with_mpi = dealii::Utilities::MPI::job_supports_mpi();
+  const unsigned int rank = with_mpi ? dealii::Utilities::MPI::this_mpi_process(communicator) : 0;
+  const unsigned int n_ranks = with_mpi ? dealii::Utilities::MPI::n_mpi_processes(communicator) : 1;
+  const auto barrier = [&] {
+    if (with_mpi)
+      MPI_Barrier(communicator);
+  };
   if (n_seeds < 1)
     throw std::invalid_argument("geohybrid pullout: '--seeds' = " + std::to_string(n_seeds) +
                                 " must be at least 1");
@@ -61,21 +70,49 @@ int run_pullout_seeds(const std::string &input_file, int n_seeds)
   // Bad input (geometry that does not fit the tank, a bad entry) is refused before the parent
   // directory is written, as a single run refuses it before its own.
   parse_pullout(prm, input_file, mode != "fem");
-  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
-  write_resolved_parameters(prm, out);
+  const std::filesystem::path out(prm.get("output directory"));
+  if (rank == 0)
+    {
+      prepare_output_directory(out.string());
+      write_resolved_parameters(prm, out);
+    }
+  barrier();
 
-  std::vector<PulloutRunRecord> runs;
-  std::string seeds;
+  // This rank's seeds, each on MPI_COMM_SELF; a failure is kept until every rank is done, so that
+  // no rank waits for one that has stopped.
+  std::string failure, seeds;
   for (int k = 0; k < n_seeds; ++k)
     {
       const std::string seed = std::to_string(first_seed + k);
+      seeds += (k ? ", " : "") + seed;
+      if (static_cast<unsigned int>(k) % n_ranks != rank || !failure.empty())
+        continue;
       const std::filesystem::path directory = out / ("seed_" + seed);
       std::cout << "geohybrid pullout: seed " << seed << " (" << k + 1 << " of " << n_seeds << ") in "
-                << directory.string() << std::endl;
-      run_pullout_command(input_file, false, {{"output directory", directory.string()}, {"Filling/seed", seed}});
-      runs.push_back(read_pullout_run(directory));
-      seeds += (k ? ", " : "") + seed;
+                << directory.string() << (n_ranks > 1 ? " on rank " + std::to_string(rank) : std::string()) << std::endl;
+      try
+        {
+          run_pullout_command(input_file, false, with_mpi ? MPI_COMM_SELF : communicator,
+                              {{"output directory", directory.string()}, {"Filling/seed", seed}});
+        }
+      catch (const std::exception &e)
+        {
+          failure = "seed " + seed + ": " + e.what();
+        }
     }
+  const unsigned int n_failed =
+    with_mpi ? dealii::Utilities::MPI::sum(failure.empty() ? 0u : 1u, communicator) : (failure.empty() ? 0u : 1u);
+  if (!failure.empty())
+    throw std::runtime_error("geohybrid pullout --seeds: " + failure);
+  if (n_failed > 0)
+    throw std::runtime_error("geohybrid pullout --seeds: the run of a seed on another rank failed (" +
+                             std::to_string(n_failed) + " rank(s)); see its message");
+  barrier();
+  if (rank != 0)
+    return 0;
+  std::vector<PulloutRunRecord> runs;
+  for (int k = 0; k < n_seeds; ++k)
+    runs.push_back(read_pullout_run(out / ("seed_" + std::to_string(first_seed + k))));
 
   // The curves, row by row.
   const std::size_t n_rows = runs.front().curve.size();
@@ -129,6 +166,7 @@ int run_pullout_seeds(const std::string &input_file, int n_seeds)
   summary.set("seeds", seeds);
   summary.set("n_seeds", static_cast<double>(n_seeds));
   summary.set("n_particles", static_cast<double>(n_particles));
+  summary.set("n_ranks", static_cast<double>(n_ranks));
   summary.set("wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count());
   summary.write(out / "summary.json");
   std::cout << "geohybrid pullout: T_max = " << t.mean << " +/- " << t.std << " kN/m over seeds " << seeds

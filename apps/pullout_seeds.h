@@ -11,13 +11,22 @@
 //   pullout_curve.png   the mean curve, the band between min and max, and each seed's curve
 //   parameters.prm, summary.json (written last): T_max_kN_per_m (the mean of the seeds' T_max),
 //                       T_max_std_kN_per_m, T_max_min/max_kN_per_m, seeds, n_seeds, n_particles,
-//                       wall_time_s, mode
+//                       wall_time_s, mode, n_ranks
+//
+// Under mpirun the seeds are spread over the ranks (an ensemble, the brief's "runs spread over
+// ranks"): rank r runs the seeds k = r, r + P, ... on MPI_COMM_SELF (dem and hybrid runs are one
+// process each; a fem run then keeps to its rank), and rank 0 averages once all are done. Every
+// seed's files are those of the serial run, bit for bit: a run does not depend on where it ran.
+#include <mpi.h>
+
 #include <string>
 
 namespace geohybrid::apps
 {
-/// Runs the N seeds one after the other and writes the averaged results. Throws
-/// std::invalid_argument for n_seeds < 1 (before anything is written) and what the single runs
-/// throw; std::runtime_error if the runs' curves do not have the same rows.
-int run_pullout_seeds(const std::string &input_file, int n_seeds);
+/// Runs the N seeds, one after the other on each rank of `communicator`, and writes the averaged
+/// results (rank 0). Throws std::invalid_argument for n_seeds < 1 (before anything is written)
+/// and what the single runs throw (on every rank: a rank whose run failed gives its message, the
+/// others name the failed seeds); std::runtime_error if the runs' curves do not have the same rows.
+/// Collective.
+int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm communicator = MPI_COMM_WORLD);
 } // namespace geohybrid::apps

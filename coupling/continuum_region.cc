@@ -23,7 +23,7 @@ FaceKey key_of(const Tank::face_iterator &face)
 } // namespace
 
 std::unique_ptr<dealii::parallel::distributed::Triangulation<fem::dim>>
-continuum_region_mesh(const Tank &tank, const OverlapBand &band)
+continuum_region_mesh(const Tank &tank, const OverlapBand &band, MPI_Comm communicator)
 {
   std::set<Tank::active_cell_iterator> in_core;
   for (const auto &cell : tank.active_cell_iterators())
@@ -69,7 +69,7 @@ continuum_region_mesh(const Tank &tank, const OverlapBand &band)
       if (cell->face(f)->at_boundary())
         cell->face(f)->set_boundary_id(boundary_id.at(key_of(cell->face(f))));
 
-  auto mesh = std::make_unique<dealii::parallel::distributed::Triangulation<fem::dim>>(MPI_COMM_WORLD);
+  auto mesh = std::make_unique<dealii::parallel::distributed::Triangulation<fem::dim>>(communicator);
   mesh->copy_triangulation(continuum);
   return mesh;
 }

@@ -30,6 +30,9 @@ inline constexpr dealii::types::boundary_id dem_core_boundary_id = 10;
 /// on the faces the removed cells leave. Throws std::invalid_argument naming 'DEM region' if the
 /// core covers the whole tank, or if `tank` already has a face with dem_core_boundary_id (the two
 /// boundaries would be one).
+/// The mesh lives on `communicator` (a coupled model runs on one rank: MPI_COMM_SELF lets several
+/// such runs share an MPI job, an ensemble).
 std::unique_ptr<dealii::parallel::distributed::Triangulation<fem::dim>>
-continuum_region_mesh(const dealii::Triangulation<fem::dim> &tank, const OverlapBand &band);
+continuum_region_mesh(const dealii::Triangulation<fem::dim> &tank, const OverlapBand &band,
+                      MPI_Comm communicator = MPI_COMM_WORLD);
 } // namespace geohybrid::coupling

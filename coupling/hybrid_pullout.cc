@@ -240,8 +240,6 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
                              const std::function<void(double)> &progress)
   : box_(particle_box(spec, where))
 {
-  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-    throw std::invalid_argument(where + ": 'mode' = hybrid runs on one MPI rank");
   tank_ = std::make_unique<dem::PullOutTank>(dem::fill_pull_out_tank(box_.box_tank, progress));
   set_up_coupled_model(spec, where);
 }
@@ -249,8 +247,6 @@ HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &w
 HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &where, dem::PullOutTank filled_box)
   : box_(particle_box(spec, where))
 {
-  if (dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
-    throw std::invalid_argument(where + ": 'mode' = hybrid runs on one MPI rank");
   if (filled_box.tank.system.particles().n_bodies() == 0)
     throw std::invalid_argument(where + ": the filled particle box holds no particles");
   tank_ = std::make_unique<dem::PullOutTank>(std::move(filled_box));
@@ -442,7 +438,8 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
   dealii::GridGenerator::subdivided_hyper_rectangle(tank_mesh, {x_steps, y_steps},
                                                     dealii::Point<fem::dim>(tank_x0, tank_y0),
                                                     dealii::Point<fem::dim>(tank_x1, tank_y1), true);
-  mesh_ = continuum_region_mesh(tank_mesh, *band_);
+  // One rank: the continuum on MPI_COMM_SELF (several runs may share an MPI job, one a rank).
+  mesh_ = continuum_region_mesh(tank_mesh, *band_, MPI_COMM_SELF);
   set_up_.n_cells = mesh_->n_global_active_cells();
 
   // The continuum: smooth back and front walls (ids 0 and 1 of the colorized rectangle), fixed

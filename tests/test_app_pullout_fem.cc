@@ -6,7 +6,9 @@
 // curve on 2 ranks.
 #include "apps/compare_command.h"
 #include "apps/pullout_command.h"
+#include "apps/pullout_seeds.h"
 #include "text_file.h"
+#include "tiny_pullout_input.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -20,6 +22,7 @@
 
 namespace fs = std::filesystem;
 using geohybrid::testing::lines_of;
+using geohybrid::testing::numbers_of;
 
 namespace
 {
@@ -362,4 +365,58 @@ TEST(PullOutFemMode, TwoRanksGiveTheOneRankCurve)
   MPI_Barrier(MPI_COMM_WORLD);
   if (is_writer())
     fs::remove_all(d);
+}
+
+// `geohybrid pullout FILE --seeds 3` under mpirun: the seeds spread over the ranks (rank r runs
+// the seeds r, r + P, ...), each on MPI_COMM_SELF, rank 0 averaging. Every seed's curve is the
+// serial run's, bit for bit (checked against a run of seed 4, the second rank's on two ranks,
+// made alone on rank 0), and the averaged curve is the mean of the three. On one rank (the plain
+// ctest run) the same test runs them in turn.
+TEST(PullOutSeedsOverRanks, EachRankRunsItsSeedsAndRankZeroAverages)
+{
+  const fs::path d = test_directory();
+  std::string input;
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    input = geohybrid::testing::write_tiny_pullout_input(d);
+  MPI_Barrier(MPI_COMM_WORLD);
+  input = (d / "tiny.prm").string();
+  ASSERT_EQ(geohybrid::apps::run_pullout_seeds(input, 3, MPI_COMM_WORLD), 0);
+  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    {
+      // Seed 4 alone, serially, on this rank.
+      const fs::path alone = d / "alone";
+      ASSERT_EQ(geohybrid::apps::run_pullout_command(input, false, MPI_COMM_SELF,
+                                                     {{"output directory", alone.string()}, {"Filling/seed", "4"}}),
+                0);
+      const auto contents = [](const fs::path &file) {
+        std::stringstream s;
+        s << std::ifstream(file).rdbuf();
+        return s.str();
+      };
+      const fs::path out = d / "out";
+      EXPECT_GT(contents(alone / "pullout_curve.csv").size(), 50u);
+      EXPECT_TRUE(contents(out / "seed_4" / "pullout_curve.csv") == contents(alone / "pullout_curve.csv"));
+      EXPECT_TRUE(contents(out / "seed_4" / "sheet_tension.csv") == contents(alone / "sheet_tension.csv"));
+      const auto mean = numbers_of(out / "pullout_curve.csv");
+      std::vector<std::vector<std::vector<double>>> seeds;
+      for (const char *seed : {"seed_3", "seed_4", "seed_5"})
+        seeds.push_back(numbers_of(out / seed / "pullout_curve.csv"));
+      ASSERT_EQ(mean.size(), 5u);
+      for (std::size_t r = 0; r < mean.size(); ++r)
+        {
+          double sum = 0.0, scale = 1e-15;
+          for (const auto &curve : seeds)
+            {
+              ASSERT_EQ(curve.size(), mean.size());
+              sum += curve[r][1];
+              scale += std::abs(curve[r][1]);
+            }
+          EXPECT_NEAR(mean[r][1], sum / 3.0, 1e-9 * scale) << "row " << r;
+        }
+      const std::string summary = contents(out / "summary.json");
+      const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+      EXPECT_NE(summary.find("\"n_ranks\": " + std::to_string(n_ranks)), std::string::npos) << summary;
+      EXPECT_NE(summary.find("\"seeds\": \"3, 4, 5\""), std::string::npos) << summary;
+    }
+  MPI_Barrier(MPI_COMM_WORLD);
 }
