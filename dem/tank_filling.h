@@ -4,7 +4,10 @@
 // Here each layer is made by REDF (sample_preparation.h) and settles under gravity:
 //
 //  1. the layer's particles are placed at random, at a fraction of their final size, above the
-//     layer's bottom level, clear of the grains already there;
+//     layer's bottom level, clear of the grains already there. A sheet standing across the
+//     layer (a wrap-around's held return) walls it into compartments no grain passes between;
+//     each gets the share of the particles that fills it at the target porosity (its space less
+//     the sheets', less the solid already in it), placed in it;
 //  2. without gravity, under a temporary lid wall, the layer's particles grow; while the layer is
 //     jammed (lid stress above the growth stress: the lift's compaction stress) above its target
 //     porosity, the growth friction is lowered step by step. Growth stops when the slab between
