@@ -435,25 +435,10 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
                                      std::filesystem::copy_options::overwrite_existing);
         }
     }
-  WallClockInterval checkpoint_due(checkpoint_interval);
-  std::uint64_t steps_now = 0;
-  while (!pull->finished())
-    {
-      if (pull->step())
-        record(pull->last_point(), system);
-      ++steps_now;
-      const bool stop = stop_after > 0 && steps_now >= stop_after && !pull->finished();
-      if (checkpoint_due.due() || stop)
-        save_checkpoint();
-      if (stop)
-        {
-          std::cerr << '\n';
-          std::cout << "geohybrid pullout: stopped after " << steps_now << " steps as 'stop after steps' asks, at "
-                    << number(1e3 * pull->head_displacement(), 4) << " mm; continue with --resume (checkpoint "
-                    << checkpoint_file.string() << ")" << std::endl;
-          return 0;
-        }
-    }
+  if (!pull_with_checkpoints(
+        *pull, [&](const dem::PullPoint &p) { record(p, system); }, save_checkpoint, checkpoint_interval, stop_after,
+        checkpoint_file))
+    return 0; // stopped as 'stop after steps' asks: continued with --resume
   pull->stop_clamp();
   progress.finish();
   fields->finish();

@@ -426,25 +426,8 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   };
   if (!resumed)
     record(pull->start_point());
-  WallClockInterval checkpoint_due(checkpoint_interval);
-  std::uint64_t steps_now = 0;
-  while (!pull->finished())
-    {
-      if (pull->step())
-        record(pull->last_point());
-      ++steps_now;
-      const bool stop = stop_after > 0 && steps_now >= stop_after && !pull->finished();
-      if (checkpoint_due.due() || stop)
-        save_checkpoint();
-      if (stop)
-        {
-          std::cerr << '\n';
-          std::cout << "geohybrid pullout: stopped after " << steps_now << " steps as 'stop after steps' asks, at "
-                    << number(1e3 * pull->head_displacement(), 4) << " mm; continue with --resume (checkpoint "
-                    << checkpoint_file.string() << ")" << std::endl;
-          return 0;
-        }
-    }
+  if (!pull_with_checkpoints(*pull, record, save_checkpoint, checkpoint_interval, stop_after, checkpoint_file))
+    return 0; // stopped as 'stop after steps' asks: continued with --resume
   pull->stop_clamp();
   progress.finish();
   const std::size_t n_points = diagnostics.n_rows();

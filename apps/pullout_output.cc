@@ -3,6 +3,7 @@
 #include "apps/plot.h"
 
 #include <algorithm>
+#include <iostream>
 #include <iomanip>
 #include <locale>
 #include <sstream>
@@ -159,5 +160,30 @@ void set_dem_sheet_summary(Summary &summary, const dem::SparSheet &sheet, double
   summary.set("sigma_v_love_weber_above_Pa", before.love_weber_above);
   summary.set("sigma_v_over_gamma_H", before.top_face / gamma_H);
   summary.set("one_face_friction_kN_per_m", one_face_friction / 1e3);
+}
+bool pull_with_checkpoints(dem::PullOut &pull, const std::function<void(const dem::PullPoint &)> &record,
+                           const std::function<void()> &save_checkpoint, double checkpoint_interval,
+                           std::uint64_t stop_after, const std::filesystem::path &checkpoint_file)
+{
+  WallClockInterval checkpoint_due(checkpoint_interval);
+  std::uint64_t steps_now = 0;
+  while (!pull.finished())
+    {
+      if (pull.step())
+        record(pull.last_point());
+      ++steps_now;
+      const bool stop = stop_after > 0 && steps_now >= stop_after && !pull.finished();
+      if (checkpoint_due.due() || stop)
+        save_checkpoint();
+      if (stop)
+        {
+          std::cerr << '\n';
+          std::cout << "geohybrid pullout: stopped after " << steps_now << " steps as 'stop after steps' asks, at "
+                    << number(1e3 * pull.head_displacement(), 4) << " mm; continue with --resume (checkpoint "
+                    << checkpoint_file.string() << ")" << std::endl;
+          return false;
+        }
+    }
+  return true;
 }
 } // namespace geohybrid::apps

@@ -15,6 +15,8 @@
 #include "dem/pullout_tank.h"
 
 #include <array>
+#include <cstdint>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -82,6 +84,14 @@ private:
   // three sheet displacements), 6 per profile row (u, segment, arc length, x, y, tension).
   std::vector<double> points_, profile_rows_;
 };
+
+/// The pull's loop of dem and hybrid modes: steps `pull` to its end, calling `record` at each
+/// recorded point and `save_checkpoint` every `checkpoint_interval` s of wall time (0: never).
+/// With `stop_after` > 0, stops after that many steps of this invocation (unless the pull is
+/// done), saves a checkpoint, says so naming `checkpoint_file`, and returns false; true at the end.
+bool pull_with_checkpoints(dem::PullOut &pull, const std::function<void(const dem::PullPoint &)> &record,
+                           const std::function<void()> &save_checkpoint, double checkpoint_interval,
+                           std::uint64_t stop_after, const std::filesystem::path &checkpoint_file);
 
 /// A point of a DEM sheet's pull (dem and hybrid modes): the curve, the displacements of the
 /// lower part's beginning, middle and end, and the tension profile when one is due. `origin` is
