@@ -276,12 +276,7 @@ TEST(PullOutCommand, WritesTheFieldsAtChosenDisplacements)
 
 namespace
 {
-std::string contents_of(const fs::path &file)
-{
-  std::stringstream s;
-  s << std::ifstream(file, std::ios::binary).rdbuf();
-  return s.str();
-}
+std::string contents_of(const fs::path &file) { return geohybrid::testing::read_text(file); }
 
 /// The tiny tank with its output in `out`, field outputs at 0.25 and 0.75 mm.
 std::string write_resume_input(const fs::path &directory, const std::string &out)

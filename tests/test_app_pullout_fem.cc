@@ -388,11 +388,7 @@ TEST(PullOutSeedsOverRanks, EachRankRunsItsSeedsAndRankZeroAverages)
       ASSERT_EQ(geohybrid::apps::run_pullout_command(input, false, MPI_COMM_SELF,
                                                      {{"output directory", alone.string()}, {"Filling/seed", "4"}}),
                 0);
-      const auto contents = [](const fs::path &file) {
-        std::stringstream s;
-        s << std::ifstream(file).rdbuf();
-        return s.str();
-      };
+      const auto &contents = geohybrid::testing::read_text;
       const fs::path out = d / "out";
       EXPECT_GT(contents(alone / "pullout_curve.csv").size(), 50u);
       EXPECT_TRUE(contents(out / "seed_4" / "pullout_curve.csv") == contents(alone / "pullout_curve.csv"));

@@ -17,6 +17,7 @@
 
 namespace fs = std::filesystem;
 using geohybrid::testing::lines_of;
+using geohybrid::testing::read_text;
 
 namespace
 {
@@ -208,16 +209,6 @@ TEST(PullOutHybridMode, BadInputNamesTheEntryAndTheFile)
   fs::remove_all(d);
 }
 
-namespace
-{
-std::string contents_of(const fs::path &file)
-{
-  std::stringstream s;
-  s << std::ifstream(file, std::ios::binary).rdbuf();
-  return s.str();
-}
-} // namespace
-
 // A coupled pull stopped twice ('stop after steps') and resumed from its checkpoints writes the
 // same files, bit for bit, as the pull that never stopped, and ends in the same state: the
 // particles and the continuum. The case with the most state: the sheet crossing into a
@@ -235,7 +226,7 @@ TEST(PullOutHybridMode, ResumesAStoppedPullBitForBit)
   const std::string input = write_input(d, extra);
   const auto run_file = [&](const std::string &name) {
     const fs::path file = d / (name + ".prm");
-    std::ofstream(file) << contents_of(input) << "set output directory = " << (d / name).string() << "\n";
+    std::ofstream(file) << read_text(input) << "set output directory = " << (d / name).string() << "\n";
     return file.string();
   };
   const std::string straight = run_file("straight"), stopped = run_file("stopped"), refilled = run_file("refilled");
@@ -258,14 +249,14 @@ TEST(PullOutHybridMode, ResumesAStoppedPullBitForBit)
                            "coupling_diagnostics.csv"})
     for (const char *other : {"stopped", "refilled"})
       {
-        const std::string expected = contents_of(d / "straight" / file);
+        const std::string expected = read_text(d / "straight" / file);
         EXPECT_GT(expected.size(), 50u) << file;
-        EXPECT_TRUE(contents_of(d / other / file) == expected) << other << '/' << file;
+        EXPECT_TRUE(read_text(d / other / file) == expected) << other << '/' << file;
       }
   EXPECT_EQ(lines_of(d / "straight" / "pullout_curve.csv").size(), 1u + 6u);
-  const std::string summary = contents_of(d / "stopped" / "summary.json");
+  const std::string summary = read_text(d / "stopped" / "summary.json");
   EXPECT_GT(summary_number(summary, "resumed_at_head_displacement_m"), 0.0) << summary;
-  EXPECT_EQ(summary_number(summary, "T_max_kN_per_m"), summary_number(contents_of(d / "straight" / "summary.json"), "T_max_kN_per_m"));
+  EXPECT_EQ(summary_number(summary, "T_max_kN_per_m"), summary_number(read_text(d / "straight" / "summary.json"), "T_max_kN_per_m"));
   // The final states (each run writes a checkpoint at its end): every body, the continuum.
   geohybrid::dem::CommandState ca, cb;
   const geohybrid::dem::DemSystemState a = geohybrid::dem::read_checkpoint(d / "straight" / "checkpoint.h5", ca),
