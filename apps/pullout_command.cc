@@ -28,6 +28,7 @@
 #include "pullout_hybrid_mode.h"
 #include "pullout_field_output.h"
 #include "pullout_input.h"
+#include "pullout_forces_output.h"
 #include "pullout_output.h"
 #include "run_directory.h"
 
@@ -397,6 +398,14 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
     fields.emplace(out, in.fields_at, g.tank_length, strip, saved, system);
   else
     fields.emplace(out, in.fields_at, g.tank_length, strip);
+  // The pull books its energy terms (the fill does not, for speed): pullout_forces.csv reports
+  // the damping and friction work the pull costs. Booking leaves the forces' arithmetic as it is.
+  system.set_energy_tracking(true);
+  std::optional<PullForcesOutput> forces;
+  if (pulled && saved.reals.count("forces_rows") != 0)
+    forces.emplace(out, mu, saved);
+  else // a new pull, or a checkpoint of a version that did not record the decomposition
+    forces.emplace(out, mu, system.energy());
   std::optional<dem::PullOut> pull;
   if (pulled)
     pull.emplace(system, in.pull, *pulled);
@@ -412,6 +421,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   ProgressReport progress("pulling", in.pull.final_displacement - u_first);
   const auto record = [&](const dem::PullPoint &p, const dem::DemSystem &s) {
     add_dem_sheet_point(*output, tank, s.sheets()[0], p);
+    forces->add_point(p, s);
     fields->record(p.head_displacement, s);
     progress.update(p.head_displacement - u_first);
   };
@@ -420,6 +430,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
     c.reals["wall_time_s"] = {earlier_wall_time + seconds()};
     dem::store_pull_progress(pull->progress(), c);
     output->store(c);
+    forces->store(c);
     fields->store(c);
     dem::write_checkpoint(system.export_state(), c, checkpoint_file);
   };
@@ -442,6 +453,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   pull->stop_clamp();
   progress.finish();
   fields->finish();
+  forces->finish();
 
   // 3. The plot, with the experimental T_max as a horizontal line if given.
   output->finish("DEM", in.experimental_T_max, in.pull.final_displacement);

@@ -349,6 +349,44 @@ HeadTensionParts head_tension_parts(const DemSystem &system)
   return parts;
 }
 
+void HeadTensionParts::add(const HeadTensionParts &o)
+{
+  const auto a = as_array(), b = o.as_array();
+  std::array<double, n_terms> sum;
+  for (std::size_t k = 0; k < n_terms; ++k)
+    sum[k] = a[k] + b[k];
+  *this = from_array(sum);
+}
+
+void HeadTensionParts::scale(double factor)
+{
+  auto a = as_array();
+  for (double &v : a)
+    v *= factor;
+  *this = from_array(a);
+}
+
+std::array<double, HeadTensionParts::n_terms> HeadTensionParts::as_array() const
+{
+  return {reaction, interface_friction, interface_normal, node_wall, inertia, damping, normal_force,
+          elastic_normal_force, tangential_force};
+}
+
+HeadTensionParts HeadTensionParts::from_array(const std::array<double, n_terms> &v)
+{
+  HeadTensionParts p;
+  p.reaction = v[0];
+  p.interface_friction = v[1];
+  p.interface_normal = v[2];
+  p.node_wall = v[3];
+  p.inertia = v[4];
+  p.damping = v[5];
+  p.normal_force = v[6];
+  p.elastic_normal_force = v[7];
+  p.tangential_force = v[8];
+  return p;
+}
+
 DemSystem with_threads(const DemSystem &system, int n_threads)
 {
   DemSystemState state = system.export_state();
@@ -410,6 +448,7 @@ void PullOut::start()
   if (!advance_)
     system_.initialise_forces();
   last_point_.head_tension = head_tension(system_);
+  last_point_.parts = head_tension_parts(system_);
 }
 
 PullOut::PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &progress, std::function<void()> advance)
@@ -434,6 +473,7 @@ PullOut::PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &pr
     system.sheets().at(0).prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
   last_point_.head_displacement = head_displacement();
   last_point_.head_tension = head_tension(system);
+  last_point_.parts = head_tension_parts(system);
 }
 
 void PullOut::stop_clamp() { system_.sheets()[0].prescribe_velocity(0, Vec2::Zero()); }
@@ -442,6 +482,7 @@ PullPoint PullOut::start_point() const
 {
   PullPoint p;
   p.head_tension = head_tension(system_);
+  p.parts = head_tension_parts(system_);
   return p;
 }
 
@@ -470,6 +511,7 @@ bool PullOut::step()
   SparSheet &sheet = system_.sheets()[0];
   sheet.prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
   progress_.tension_sum += head_tension(system_);
+  progress_.parts_sum.add(head_tension_parts(system_));
   ++progress_.n_summed;
   ++progress_.n_steps;
   const double u = sheet.x[0] - progress_.clamp_x0, end = spec_.final_displacement;
@@ -477,6 +519,9 @@ bool PullOut::step()
     return false;
   last_point_.head_displacement = u;
   last_point_.head_tension = progress_.tension_sum / static_cast<double>(progress_.n_summed);
+  last_point_.parts = progress_.parts_sum;
+  last_point_.parts.scale(1.0 / static_cast<double>(progress_.n_summed));
+  progress_.parts_sum = HeadTensionParts();
   progress_.tension_sum = 0.0;
   progress_.n_summed = 0;
   progress_.next_record += spec_.record_interval;
@@ -569,6 +614,8 @@ void store_pull_progress(const PullProgress &p, CommandState &c)
 {
   c.reals["pull"] = {p.clamp_x0, p.time0, p.tension_sum, p.next_record};
   c.counts["pull"] = {p.n_summed, p.n_steps, p.finished ? 1u : 0u};
+  const auto parts = p.parts_sum.as_array();
+  c.reals["pull_parts_sum"] = std::vector<double>(parts.begin(), parts.end());
 }
 
 std::optional<PullProgress> restore_pull_progress(const CommandState &c)
@@ -586,6 +633,15 @@ std::optional<PullProgress> restore_pull_progress(const CommandState &c)
   p.n_summed = n[0];
   p.n_steps = n[1];
   p.finished = n[2] != 0;
+  // Checkpoints written before the decomposition was recorded have no sums: the interval under
+  // way then starts its decomposition from where the run resumes (the curve is unaffected).
+  if (c.reals.count("pull_parts_sum") != 0)
+    {
+      const std::vector<double> &s = c.real("pull_parts_sum", HeadTensionParts::n_terms);
+      std::array<double, HeadTensionParts::n_terms> a;
+      std::copy(s.begin(), s.end(), a.begin());
+      p.parts_sum = HeadTensionParts::from_array(a);
+    }
   return p;
 }
 

@@ -155,6 +155,14 @@ struct HeadTensionParts
   double elastic_normal_force = 0.0; ///< the same, springs only (kn overlap): the Coulomb limit is tan(delta) times it
   double tangential_force = 0.0;    ///< sum of the magnitudes of the interface tangential forces
   double sum() const { return interface_friction + interface_normal + node_wall + inertia + damping; }
+
+  /// Adds `other` term by term (the interval sums of a pull); scale() turns a sum into a mean.
+  void add(const HeadTensionParts &other);
+  void scale(double factor);
+  /// The terms in the order above (reaction first), for checkpoints and files.
+  static constexpr std::size_t n_terms = 9;
+  std::array<double, n_terms> as_array() const;
+  static HeadTensionParts from_array(const std::array<double, n_terms> &values);
 };
 HeadTensionParts head_tension_parts(const DemSystem &system);
 
@@ -184,6 +192,9 @@ struct PullPoint
 {
   double head_displacement = 0.0;   ///< [m]
   double head_tension = 0.0;        ///< mean clamp reaction along the pull [N/m]
+  /// Where it comes from: each term's mean over the same steps (parts.reaction = head_tension).
+  /// Which of them grows with the pull rate is what a rate check must look at.
+  HeadTensionParts parts;
 };
 
 /// What the pull carries from one step to the next, plain data: with the DemSystemState, all a
@@ -193,6 +204,7 @@ struct PullProgress
   double clamp_x0 = 0.0;            ///< x of the clamp at the start of the pull [m]
   double time0 = 0.0;               ///< the system's time at the start of the pull [s]
   double tension_sum = 0.0;         ///< sum of the head tensions of the steps since the last record [N/m]
+  HeadTensionParts parts_sum;       ///< the same steps' decompositions, summed term by term [N/m]
   std::uint64_t n_summed = 0;       ///< steps in tension_sum
   double next_record = 0.0;         ///< head displacement of the next recorded point [m]
   std::uint64_t n_steps = 0;        ///< pull steps done
