@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -23,13 +24,49 @@ std::string number(double value, int digits)
   return s.str();
 }
 
+namespace
+{
+/// The text of a parameter file whose 'include FILE' lines name FILE as an absolute path: a
+/// relative FILE is looked for beside the including file first (so that an input and the soil
+/// fragment it includes can be run from any directory), then in the working directory (deal.II's
+/// own rule, kept for inputs written for it). One line for one line: error messages keep their
+/// line numbers.
+std::string with_includes_resolved(const std::filesystem::path &file)
+{
+  std::ifstream in(file);
+  std::ostringstream text;
+  for (std::string line; std::getline(in, line);)
+    {
+      const auto first = line.find_first_not_of(" \t");
+      if (first != std::string::npos && (line.compare(first, 8, "include ") == 0 || line.compare(first, 8, "INCLUDE ") == 0))
+        {
+          std::string name = line.substr(first + 8);
+          name = name.substr(0, name.find('#'));
+          name.erase(0, name.find_first_not_of(" \t"));
+          name.erase(name.find_last_not_of(" \t\r") + 1);
+          const std::filesystem::path beside = file.parent_path() / name;
+          if (!name.empty() && std::filesystem::path(name).is_relative() && std::filesystem::is_regular_file(beside))
+            line = line.substr(0, first) + "include " + std::filesystem::absolute(beside).lexically_normal().string();
+        }
+      text << line << '\n';
+    }
+  return text.str();
+}
+} // namespace
+
 void parse_input_file(dealii::ParameterHandler &prm, const std::string &input_file)
 {
   if (!std::filesystem::is_regular_file(input_file))
     throw std::runtime_error("input file '" + input_file + "' does not exist");
   try
     {
-      prm.parse_input(input_file);
+      if (std::filesystem::path(input_file).extension() == ".prm")
+        {
+          std::istringstream text(with_includes_resolved(input_file));
+          prm.parse_input(text, input_file);
+        }
+      else
+        prm.parse_input(input_file);
     }
   catch (const dealii::ExceptionBase &e)
     {
