@@ -6,6 +6,7 @@
 //   geohybrid calibrate FILE.prm           contact friction, kn, ks/kn fitted to target phi', E (nu)
 //   geohybrid pullout FILE.prm             pull-out of a geosynthetic anchored in the INSA tank
 //   geohybrid pullout FILE.prm --seeds N   the same on N fills (seeds s, s+1, ...), averaged
+//   geohybrid pullout FILE.prm --print-parameters-hash   the input checked, its physics' hash printed
 //   mpirun -np N geohybrid pullout FILE.prm  the same with 'mode = fem' on N MPI ranks
 //   ('mode = hybrid': particles round the sheet, the continuum elsewhere; one process)
 //   geohybrid coupling-test FILE.prm       the coupling's patch, wave and energy benchmarks for one method
@@ -65,6 +66,8 @@ void print_usage(std::ostream &out)
          "usage: geohybrid COMMAND FILE.prm|FILE.json [--resume]\n"
          "       geohybrid COMMAND --print-parameters   (every parameter, default, unit and meaning)\n"
          "       geohybrid pullout FILE.prm --seeds N   (N fills, seeds s, s+1, ...; the averaged curve; under mpirun spread over the ranks)\n"
+         "       geohybrid pullout FILE.prm --print-parameters-hash   (FILE checked as a run would, nothing\n"
+         "                                              written; the hash its summary.json would hold)\n"
          "       geohybrid compare DIR1 DIR2 ... [--output FILE.png]   (pull-out curves in one PNG)\n"
          "       geohybrid --help\n\n"
          "--resume continues the run of FILE from its last checkpoint, OUTPUT/checkpoint.h5\n"
@@ -105,7 +108,7 @@ int main(int argc, char **argv)
     }
   // The arguments after the command: --print-parameters alone, or one input file and --resume.
   std::string input_file;
-  bool resume = false, print_parameters = false;
+  bool resume = false, print_parameters = false, print_hash = false;
   int n_seeds = 0; // pullout --seeds N
   for (int k = 2; k < argc; ++k)
     {
@@ -126,6 +129,8 @@ int main(int argc, char **argv)
         }
       else if (argument == "--print-parameters" && !print_parameters)
         print_parameters = true;
+      else if (argument == "--print-parameters-hash" && !std::strcmp(argv[1], "pullout") && !print_hash)
+        print_hash = true;
       else if (argument.rfind("--", 0) != 0 && input_file.empty())
         input_file = argument;
       else
@@ -135,10 +140,11 @@ int main(int argc, char **argv)
           return 2;
         }
     }
-  if (print_parameters ? (resume || n_seeds > 0 || !input_file.empty()) : (input_file.empty() || (resume && n_seeds > 0)))
+  if (print_parameters ? (resume || n_seeds > 0 || print_hash || !input_file.empty())
+                       : (input_file.empty() || (resume && n_seeds > 0) || (print_hash && (resume || n_seeds > 0))))
     {
-      std::cerr << "geohybrid " << argv[1] << ": expected one input file (optionally followed by --resume) or "
-                << "--print-parameters\n";
+      std::cerr << "geohybrid " << argv[1] << ": expected one input file (optionally followed by --resume, or for "
+                << "pullout by --seeds N or --print-parameters-hash) or --print-parameters\n";
       return 2;
     }
   try
@@ -148,6 +154,13 @@ int main(int argc, char **argv)
           dealii::ParameterHandler prm;
           found->second.declare(prm);
           prm.print_parameters(std::cout, dealii::ParameterHandler::OutputStyle::PRM);
+          return 0;
+        }
+      if (print_hash)
+        {
+          const std::string hash = geohybrid::apps::check_pullout_input(input_file);
+          if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+            std::cout << hash << std::endl;
           return 0;
         }
       if (n_seeds > 0)

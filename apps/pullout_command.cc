@@ -21,9 +21,14 @@
 // when the tank is full (and copied to filled_tank.h5), every 'checkpoint interval' s of wall
 // time and at the end. `geohybrid pullout FILE --resume` continues from it, bit for bit; without
 // one (the run stopped while filling) it fills the tank again and says so.
+//
+// Every mode's summary.json holds `parameters_hash`, the hash of the resolved input without its
+// run-control entries (apps/parameters_hash.h); `--print-parameters-hash` (check_pullout_input)
+// reads and checks an input as a run does, each mode stopping before its first file.
 #include "pullout_command.h"
 
 #include "contact_parameters.h"
+#include "parameters_hash.h"
 #include "pullout_fem_mode.h"
 #include "pullout_hybrid_mode.h"
 #include "pullout_field_output.h"
@@ -297,9 +302,9 @@ namespace
 /// mode = dem: the tank filled with particles, then pulled. With `resume`, the tank and the
 /// pull continue from OUTPUT/checkpoint.h5 (one is written when the tank is full, then every
 /// 'checkpoint interval' s of wall time): the result files are those of a run that never
-/// stopped, bit for bit.
+/// stopped, bit for bit. With `check_only`, returns before the first file is written.
 int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, bool resume,
-                         MPI_Comm communicator)
+                         MPI_Comm communicator, bool check_only)
 {
   if (dealii::Utilities::MPI::job_supports_mpi() && dealii::Utilities::MPI::n_mpi_processes(communicator) > 1)
     throw std::invalid_argument(where + ": 'mode' = dem runs in one process (its threads: 'threads'); run it "
@@ -307,6 +312,8 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   const dem::PullOutGeometry &g = in.tank.geometry;
   const double checkpoint_interval = prm.get_double("checkpoint interval");
   const auto stop_after = static_cast<std::uint64_t>(prm.get_integer("stop after steps"));
+  if (check_only)
+    return 0;
 
   const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
   const std::filesystem::path checkpoint_file = out / "checkpoint.h5";
@@ -478,6 +485,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
     fill_steps += static_cast<double>(layer.n_growth_steps + layer.n_settling_steps);
   summary.set("n_fill_steps", fill_steps);
   summary.set("wall_time_s", wall_time);
+  summary.set("parameters_hash", pullout_parameters_hash(prm));
   summary.write(out / "summary.json");
   std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m (" << number(T_max * g.sheet_width / 1e3, 4)
             << " kN for b = " << number(g.sheet_width, 3) << " m) at " << number(1e3 * u_at_T_max, 3) << " mm"
@@ -485,15 +493,10 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
             << "; " << number(wall_time, 4) << " s\nresults in " << out.string() << '\n';
   return 0;
 }
-} // namespace
-
-int run_pullout_command(const std::string &input_file, bool resume, const ParameterOverrides &overrides)
-{
-  return run_pullout_command(input_file, resume, MPI_COMM_WORLD, overrides);
-}
-
-int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm communicator,
-                        const ParameterOverrides &overrides)
+/// The input of FILE with `overrides`, read and checked as every run reads it, then run; with
+/// `hash`, each mode stops before its first file is written, and *hash gets the input's hash.
+int read_and_run(const std::string &input_file, bool resume, MPI_Comm communicator, const ParameterOverrides &overrides,
+                 std::string *hash)
 {
   ParameterHandler prm;
   declare_pullout_parameters(prm);
@@ -507,9 +510,31 @@ int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm com
                                 "no checkpoints): run it again without --resume");
   // Hybrid mode fills its particle box from the whole tank's Filling: checked as in dem mode.
   const PullOutInput in = parse_pullout(prm, where, mode != "fem");
-  if (mode == "hybrid")
-    return run_pullout_hybrid_mode(prm, in, where, resume, communicator);
-  return mode == "dem" ? run_pullout_dem_mode(prm, in, where, resume, communicator)
-                       : run_pullout_fem_mode(prm, in, where, communicator);
+  const bool check_only = hash != nullptr;
+  const int status = mode == "hybrid" ? run_pullout_hybrid_mode(prm, in, where, resume, communicator, check_only)
+                     : mode == "dem"  ? run_pullout_dem_mode(prm, in, where, resume, communicator, check_only)
+                                      : run_pullout_fem_mode(prm, in, where, communicator, check_only);
+  if (hash)
+    *hash = pullout_parameters_hash(prm);
+  return status;
+}
+} // namespace
+
+int run_pullout_command(const std::string &input_file, bool resume, const ParameterOverrides &overrides)
+{
+  return run_pullout_command(input_file, resume, MPI_COMM_WORLD, overrides);
+}
+
+int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm communicator,
+                        const ParameterOverrides &overrides)
+{
+  return read_and_run(input_file, resume, communicator, overrides, nullptr);
+}
+
+std::string check_pullout_input(const std::string &input_file, MPI_Comm communicator)
+{
+  std::string hash;
+  read_and_run(input_file, false, communicator, {}, &hash);
+  return hash;
 }
 } // namespace geohybrid::apps

@@ -24,4 +24,8 @@ int run_pullout_command(const std::string &input_file, bool resume, const Parame
 /// communicator of several ranks (an ensemble member runs on MPI_COMM_SELF: pullout_seeds.h).
 int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm communicator,
                         const ParameterOverrides &overrides = {});
+/// `geohybrid pullout FILE --print-parameters-hash`: reads and checks FILE as a run of it would,
+/// refusing what the run refuses before its first file, writes nothing, and returns the
+/// parameters_hash its summary.json would hold (apps/parameters_hash.h). Throws as the run would.
+std::string check_pullout_input(const std::string &input_file, MPI_Comm communicator = MPI_COMM_WORLD);
 } // namespace geohybrid::apps

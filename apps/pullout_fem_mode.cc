@@ -1,5 +1,6 @@
 #include "pullout_fem_mode.h"
 
+#include "apps/parameters_hash.h"
 #include "apps/pullout_output.h"
 #include "apps/run_directory.h"
 
@@ -234,7 +235,8 @@ void on_rank_zero(MPI_Comm comm, F &&f)
 }
 } // namespace
 
-int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, MPI_Comm comm)
+int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, MPI_Comm comm,
+                         bool check_only)
 {
   const auto start_time = std::chrono::steady_clock::now();
   const auto seconds = [&] {
@@ -278,6 +280,8 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
     }
   else
     explicit_problem.emplace(mesh, c.problem, problem_where);
+  if (check_only)
+    return 0;
 
   std::optional<PulloutOutput> output;
   on_rank_zero(comm, [&] {
@@ -394,6 +398,7 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
       }
     summary.set("n_mpi_ranks", static_cast<double>(n_ranks));
     summary.set("wall_time_s", wall_time);
+    summary.set("parameters_hash", pullout_parameters_hash(prm));
     summary.write(out / "summary.json");
     std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m ("
               << number(T_max * g.sheet_width / 1e3, 4) << " kN for b = " << number(g.sheet_width, 3) << " m) at "

@@ -48,7 +48,8 @@ ContinuumSoilInput parse_continuum_soil(dealii::ParameterHandler &prm);
 
 /// Runs the continuum pull-out of `in` (parsed from `prm`, the file named by `where`) on the ranks
 /// of `communicator`. Collective; bad input throws std::invalid_argument naming the file and the
-/// entry on every rank before anything is written.
+/// entry on every rank before anything is written. With `check_only`, returns 0 there instead of
+/// running (--print-parameters-hash).
 int run_pullout_fem_mode(dealii::ParameterHandler &prm, const PullOutInput &in, const std::string &where,
-                         MPI_Comm communicator);
+                         MPI_Comm communicator, bool check_only = false);
 } // namespace geohybrid::apps

@@ -1,6 +1,7 @@
 #include "pullout_hybrid_mode.h"
 
 #include "apps/pullout_fem_mode.h"
+#include "apps/parameters_hash.h"
 #include "apps/pullout_output.h"
 #include "apps/run_directory.h"
 
@@ -265,7 +266,7 @@ private:
 } // namespace
 
 int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, bool resume,
-                            MPI_Comm communicator)
+                            MPI_Comm communicator, bool check_only)
 {
   if (dealii::Utilities::MPI::job_supports_mpi() && dealii::Utilities::MPI::n_mpi_processes(communicator) > 1)
     throw std::invalid_argument(where + ": 'mode' = hybrid runs in one process; run it without mpirun");
@@ -283,6 +284,8 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   const std::string out_name = prm.get("output directory");
   if (out_name.empty())
     throw std::invalid_argument(where + ": parameter 'output directory' is empty");
+  if (check_only)
+    return 0;
 
   const std::filesystem::path out = prepare_output_directory(out_name);
   // Checkpoints: the filled box (the particles only, written once: the set-up after it is
@@ -472,6 +475,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   summary.set("fill_wall_time_s", fill_time);
   summary.set("set_up_wall_time_s", set_up_time);
   summary.set("wall_time_s", wall_time);
+  summary.set("parameters_hash", pullout_parameters_hash(prm));
   summary.write(out / "summary.json");
   std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m ("
             << number(T_max * g.sheet_width / 1e3, 4) << " kN for b = " << number(g.sheet_width, 3) << " m) at "

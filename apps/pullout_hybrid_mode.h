@@ -30,7 +30,8 @@ void declare_hybrid_parameters(dealii::ParameterHandler &prm);
 
 /// Runs the hybrid pull-out of `in` (parsed from `prm`, the file named by `where`). Bad input
 /// throws std::invalid_argument naming the file and the entry before anything is written.
-/// One process: `communicator` must have one rank (MPI_COMM_SELF for an ensemble member).
+/// One process: `communicator` must have one rank (MPI_COMM_SELF for an ensemble member). With
+/// `check_only`, returns 0 before the first file is written (--print-parameters-hash).
 int run_pullout_hybrid_mode(dealii::ParameterHandler &prm, const PullOutInput &in, const std::string &where,
-                            bool resume, MPI_Comm communicator);
+                            bool resume, MPI_Comm communicator, bool check_only = false);
 } // namespace geohybrid::apps

@@ -167,7 +167,9 @@ namespace
 {
 std::string write_tiny_input(const fs::path &directory) { return geohybrid::testing::write_tiny_pullout_input(directory); }
 
-/// The rows of a CSV file of numbers, after its header.
+std::string contents_of_summary(const fs::path &run) { return geohybrid::testing::read_text(run / "summary.json"); }
+
+/// The number a flat summary.json gives `key` (NaN if it has none).
 double json_number(const fs::path &file, const std::string &key)
 {
   std::stringstream text;
@@ -241,6 +243,14 @@ TEST(PullOutCommand, SeedsAverageTheCurves)
   std::stringstream summary;
   summary << std::ifstream(out / "summary.json").rdbuf();
   EXPECT_NE(summary.str().find("\"seeds\": \"3, 4\""), std::string::npos) << summary.str();
+  // Each seed's summary holds the hash of its own input: the file's for seed 3, seed 4's for seed 4.
+  std::ofstream(d / "seed_4.prm") << "include " << input << "\nsubsection Filling\n  set seed = 4\nend\n";
+  EXPECT_NE(contents_of_summary(out / "seed_3").find("\"parameters_hash\": \"" +
+                                                      geohybrid::apps::check_pullout_input(input) + "\""),
+            std::string::npos);
+  EXPECT_NE(contents_of_summary(out / "seed_4").find("\"parameters_hash\": \"" +
+                                                      geohybrid::apps::check_pullout_input((d / "seed_4.prm").string()) + "\""),
+            std::string::npos);
   EXPECT_NE(summary.str().find("\"mode\": \"dem\""), std::string::npos) << summary.str();
   if (std::system("command -v gnuplot > /dev/null 2>&1") == 0)
     {
@@ -363,6 +373,16 @@ TEST(PullOutCommand, ResumesAStoppedPullBitForBit)
         EXPECT_TRUE(contents_of(d / other / file) == expected) << other << '/' << file;
       }
   EXPECT_EQ(lines_of(d / "straight" / "pullout_curve.csv").size(), 1u + 5u);
+  // Stopped or not, in another directory: the same physics, the same hash; another rate, another.
+  const auto hash_of = [&](const char *run) {
+    const std::string text = contents_of(d / run / "summary.json");
+    const auto at = text.find("\"parameters_hash\": \"");
+    return at == std::string::npos ? std::string("none") : text.substr(at + 20, 16);
+  };
+  EXPECT_EQ(hash_of("stopped"), hash_of("straight"));
+  EXPECT_EQ(hash_of("from_fast"), hash_of("straight"));
+  EXPECT_NE(hash_of("fast"), hash_of("straight"));
+  EXPECT_NE(hash_of("straight"), "none");
   // The final states (each run writes a checkpoint at its end): every body, every sheet node.
   const geohybrid::dem::DemSystemState a = geohybrid::dem::read_checkpoint(d / "straight" / "checkpoint.h5"),
                                        b = geohybrid::dem::read_checkpoint(d / "stopped" / "checkpoint.h5");

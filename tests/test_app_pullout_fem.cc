@@ -117,9 +117,12 @@ bool is_writer() { return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORL
 TEST(PullOutFemMode, WritesTheContractAndReachesTheInterfaceLimit)
 {
   const fs::path d = test_directory();
-  ASSERT_EQ(error_of(write_input(d, "subsection Continuum\n  set snapshot interval = 0.002\nend\n")), "");
+  const std::string input = write_input(d, "subsection Continuum\n  set snapshot interval = 0.002\nend\n");
+  ASSERT_EQ(error_of(input), "");
+  const std::string hash = geohybrid::apps::check_pullout_input(input); // collective, as the run
   if (!is_writer())
     return;
+  EXPECT_NE(summary_of(d / "out").find("\"parameters_hash\": \"" + hash + "\""), std::string::npos);
   const fs::path out = d / "out";
   // VTU snapshots of the soil, asked for: before the pull, at 2 and at 4 mm.
   for (const char *record : {"pullout_0000.pvtu", "pullout_0001.pvtu", "pullout_0002.pvtu"})

@@ -84,7 +84,8 @@ double summary_number(const std::string &json, const std::string &key)
 TEST(PullOutHybridMode, WritesTheContractWithTheHybridKeys)
 {
   const fs::path d = test_directory();
-  ASSERT_EQ(error_of(write_input(d, "")), "");
+  const std::string input = write_input(d, "");
+  ASSERT_EQ(error_of(input), "");
   const fs::path out = d / "out";
   const std::vector<std::string> curve = lines_of(out / "pullout_curve.csv");
   ASSERT_EQ(curve.size(), 1u + 6u); // header, the start and five intervals of 0.2 mm
@@ -107,6 +108,9 @@ TEST(PullOutHybridMode, WritesTheContractWithTheHybridKeys)
   text << std::ifstream(out / "summary.json").rdbuf();
   const std::string summary = text.str();
   EXPECT_NE(summary.find("\"mode\": \"hybrid\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"parameters_hash\": \"" + geohybrid::apps::check_pullout_input(input) + "\""),
+            std::string::npos)
+    << summary;
   EXPECT_NE(summary.find("\"coupling_method\": \"multipliers\""), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"DEM_region\": ["), std::string::npos) << summary;
   // The box [0.1, 0.4] x [0.05, 0.15] m of the 0.4 m x 0.2 m tank: 3/8 of 4,000 grains.
@@ -257,6 +261,12 @@ TEST(PullOutHybridMode, ResumesAStoppedPullBitForBit)
   const std::string summary = read_text(d / "stopped" / "summary.json");
   EXPECT_GT(summary_number(summary, "resumed_at_head_displacement_m"), 0.0) << summary;
   EXPECT_EQ(summary_number(summary, "T_max_kN_per_m"), summary_number(read_text(d / "straight" / "summary.json"), "T_max_kN_per_m"));
+  const auto hash_in = [](const std::string &text) {
+    const auto at = text.find("\"parameters_hash\": \"");
+    return at == std::string::npos ? std::string("none") : text.substr(at + 20, 16);
+  };
+  EXPECT_NE(hash_in(summary), "none");
+  EXPECT_EQ(hash_in(summary), hash_in(read_text(d / "straight" / "summary.json"))); // stop after steps: run control
   // The final states (each run writes a checkpoint at its end): every body, the continuum.
   geohybrid::dem::CommandState ca, cb;
   const geohybrid::dem::DemSystemState a = geohybrid::dem::read_checkpoint(d / "straight" / "checkpoint.h5", ca),
