@@ -49,6 +49,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <locale>
 #include <optional>
 #include <sstream>
 #include <unistd.h>
@@ -173,6 +174,9 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "Local damping of the sheet's nodes while pulling (the grains keep 'Filling/local damping'): "
                     "damping a sheet that slides one way through fluctuating contacts drags it whatever the rate, "
                     "so 0 by default; dem and hybrid modes (fem: 'Continuum/local damping' acts on soil and sheet) [-]");
+  prm.declare_entry("grain local damping", "", Patterns::Anything(),
+                    "Local damping of the grains while pulling; empty: 'Filling/local damping'. The damping's drag "
+                    "on grains that keep moving one way grows with the pull rate (bench/RESULTS.md) [-]");
   prm.declare_entry("tension profiles at", "0.006, 0.06", Patterns::List(Patterns::Double(0.0)),
                     "Head displacements at which the tension along the sheet is written [m]");
   prm.leave_subsection();
@@ -261,6 +265,16 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool
   in.pull.record_interval = prm.get_double("record interval");
   in.pull.ramp_displacement = prm.get_double("ramp displacement");
   in.pull.sheet_local_damping = prm.get_double("sheet local damping");
+  if (const std::string alpha = prm.get("grain local damping"); !alpha.empty())
+    {
+      double value = -1.0;
+      std::istringstream text(alpha);
+      text.imbue(std::locale::classic());
+      if (!(text >> value) || !(text >> std::ws).eof() || !(value >= 0.0 && value < 1.0))
+        throw std::invalid_argument(where + ": 'Pull/grain local damping' = '" + alpha +
+                                    "' must be empty or a number in [0, 1)");
+      in.pull.grain_local_damping = value;
+    }
   if (!(in.pull.ramp_displacement < in.pull.final_displacement))
     throw std::invalid_argument(where + ": 'Pull/ramp displacement' = " + number(in.pull.ramp_displacement) +
                                 " m must be shorter than 'Pull/final displacement'");

@@ -1276,4 +1276,11 @@ void DemSystem::set_sheet_local_damping(double alpha)
     throw std::invalid_argument("sheet local damping " + std::to_string(alpha) + " must lie in [0, 1)");
   sheet_local_damping_ = alpha;
 }
+
+void DemSystem::set_local_damping(double alpha)
+{
+  if (!(alpha >= 0.0 && alpha < 1.0))
+    throw std::invalid_argument("local damping " + std::to_string(alpha) + " must lie in [0, 1)");
+  settings_.local_damping = alpha;
+}
 } // namespace geohybrid::dem

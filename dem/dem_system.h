@@ -189,6 +189,9 @@ public:
   /// through grains whose contacts fluctuate, it is a drag that does not vanish with the rate
   /// (a pull-out runs better with the sheet undamped: pullout_tank.h). Throws unless in [0, 1).
   void set_sheet_local_damping(double alpha);
+  /// The particles' local damping from now on (DemSettings::local_damping); a sheet without its
+  /// own keeps following it. Throws unless in [0, 1).
+  void set_local_damping(double alpha);
   double sheet_local_damping() const { return sheet_local_damping_; }
 
   /// Bridging-domain energy weights (energy_weights.h; Xiao & Belytschko 2004), for a DEM region

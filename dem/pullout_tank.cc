@@ -443,6 +443,8 @@ void PullOut::start()
   progress_.next_record = spec_.record_interval;
   sheet.prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
   system_.set_sheet_local_damping(spec_.sheet_local_damping);
+  if (spec_.grain_local_damping)
+    system_.set_local_damping(*spec_.grain_local_damping);
   // A system stepped by someone else keeps its forces current (a coupled stepper's include the
   // coupling's, which a new evaluation would apply twice).
   if (!advance_)
@@ -469,6 +471,8 @@ PullOut::PullOut(DemSystem &system, const PullSpec &spec, const PullProgress &pr
   // for the next): prescribed again, it changes nothing when resuming the same pull, and it
   // makes a pull of the same filled tank at another rate start at its own speed.
   system.set_sheet_local_damping(spec.sheet_local_damping);
+  if (spec.grain_local_damping)
+    system.set_local_damping(*spec.grain_local_damping);
   if (!progress.finished)
     system.sheets().at(0).prescribe_velocity(0, Vec2(clamp_speed(), 0.0));
   last_point_.head_displacement = head_displacement();

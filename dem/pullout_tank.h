@@ -185,6 +185,10 @@ struct PullSpec
   /// fluctuating contacts, whatever the rate: measured on a 400-cluster tank at 5 mm/s with the
   /// sheet damped like the grains (0.7), T = 1.4 tan(delta) N. 0 by default [-].
   double sheet_local_damping = 0.0;
+  /// Local damping of the grains while pulling; empty: the system's (the fill's). The damping's
+  /// drag on grains that keep moving one way (the soil dilating round the sheet) is what a pull
+  /// too fast for its damping turns into normal stress on the sheet (bench/RESULTS.md, the rate).
+  std::optional<double> grain_local_damping;
 };
 
 /// One recorded point: averages over the interval that ends at head_displacement.

@@ -154,7 +154,9 @@ TEST(PullOutCommand, BadInputNamesTheEntry)
                              "  set B = 0.2\nend\n",
                              "'Anchorage/B'"},
                         Case{"subsection Filling\n  set number of layers = 3\nend\n", "'Filling/number of layers'"},
-                        Case{"subsection Output\n  set experimental T_max = abc\nend\n", "experimental T_max"}})
+                        Case{"subsection Output\n  set experimental T_max = abc\nend\n", "experimental T_max"},
+                        Case{"subsection Pull\n  set grain local damping = 1.2\nend\n", "'Pull/grain local damping'"},
+                        Case{"subsection Pull\n  set grain local damping = low\nend\n", "'Pull/grain local damping'"}})
     {
       const std::string message = error_of(write_input(d, c.extra));
       EXPECT_NE(message.find(c.expected), std::string::npos) << c.extra << " -> " << message;
@@ -362,6 +364,18 @@ TEST(PullOutCommand, ResumesAStoppedPullBitForBit)
   ASSERT_EQ(run_pullout_command(from_fast, true), 0);
   EXPECT_TRUE(contents_of(d / "from_fast" / "pullout_curve.csv") == contents_of(d / "straight" / "pullout_curve.csv"));
   EXPECT_FALSE(contents_of(d / "fast" / "pullout_curve.csv") == contents_of(d / "straight" / "pullout_curve.csv"));
+  // The grains' damping while pulling: the fill's value given explicitly is the straight run, bit
+  // for bit; another value pulls the same tank another way.
+  const std::string same_damping = write_resume_input(d, "same_damping"), less_damping = write_resume_input(d, "less_damping");
+  for (const char *run : {"same_damping", "less_damping"})
+    {
+      fs::create_directories(d / run);
+      fs::copy_file(d / "fast" / "filled_tank.h5", d / run / "checkpoint.h5");
+    }
+  ASSERT_EQ(run_pullout_command(same_damping, true, {{"Pull/grain local damping", "0.7"}}), 0);
+  ASSERT_EQ(run_pullout_command(less_damping, true, {{"Pull/grain local damping", "0.1"}}), 0);
+  EXPECT_TRUE(contents_of(d / "same_damping" / "pullout_curve.csv") == contents_of(d / "straight" / "pullout_curve.csv"));
+  EXPECT_FALSE(contents_of(d / "less_damping" / "pullout_curve.csv") == contents_of(d / "straight" / "pullout_curve.csv"));
 
   for (const char *file : {"pullout_curve.csv", "pullout_curve_sheet.csv", "pullout_forces.csv", "sheet_displacements.csv", "sheet_tension.csv",
                            "surface_uplift.csv", "grain_displacements_u0.25mm.csv", "grain_displacements_u0.75mm.csv",
