@@ -638,7 +638,25 @@ void DemSystem::move_walls()
           WallServo &servo = wall.servo;
           const double error = wall.normal_stress() - servo.target_stress;
           const double n_contacts = std::max<double>(1.0, static_cast<double>(wall.n_contacts));
-          const double gain = servo.relaxation * wall.stress_length() / (n_contacts * wall.law.normal_stiffness() * dt);
+          const double kn = wall.law.normal_stiffness();
+          double resistance = n_contacts * kn * dt; // the contacts' force change per unit speed over a step
+          if (wall.law.has_dashpot() && wall.n_contacts > 0)
+            {
+              // A wall with dashpots also meets c = 2 zeta sqrt(kn m) per contact at once: left out,
+              // the servo overshoots each step and, the dashpots never pulling (contact_law.h),
+              // locks into a cycle at its speed cap, the stress jumping by +-50 % (ServoWall test).
+              resistance = 0.0;
+              const WallContacts &c = wall_contacts_[w];
+              for (std::size_t q = 0; q < c.disc.size(); ++q)
+                if (c.state[q].touching)
+                  {
+                    const double inverse_mass = particles_.inverse_mass[particles_.disc_body[c.disc[q]]];
+                    resistance += kn * dt; // a fixed body's contact has no dashpot (contact_law.h)
+                    if (inverse_mass > 0.0)
+                      resistance += 2.0 * wall.law.damping_ratio() * std::sqrt(kn / inverse_mass);
+                  }
+            }
+          const double gain = servo.relaxation * wall.stress_length() / resistance;
           double speed = gain * (error + servo.integral_gain * (servo.integral + error));
           if (std::abs(speed) < servo.max_speed && wall.n_contacts > 0)
             servo.integral += error; // no wind-up while capped or out of contact

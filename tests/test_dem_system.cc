@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <numeric>
 #include <random>
 #include <sstream>
@@ -314,7 +315,10 @@ TEST(EnergyBalance, MovingWallWithDissipation)
 // normal stress is the target; with frictionless walls the floor carries the roof's force plus
 // the weight of the discs (vertical equilibrium). Then the right wall pushes in at 5 mm/s and the
 // servo roof must retreat: PFC's servo then lags by v N kn dt / (alpha L) ~ 30 Pa at the roof's
-// speed v ~ 1 mm/s (measured 35 Pa, 0.35 %). 2 % is the tolerance asked for.
+// speed v ~ 1 mm/s (measured 41 Pa, 0.41 %). 2 % is the tolerance asked for. The walls have
+// dashpots (e = 0.5), which the servo's gain counts (DemSystem::move_walls): without them in it
+// and with dashpots that never pull (contact_law.h), the roof locked into a two-step cycle at its
+// speed cap, its stress jumping between 5.0 and 14.3 kPa.
 TEST(ServoWall, HoldsTargetStress)
 {
   constexpr int n_side = 10;
@@ -357,6 +361,7 @@ TEST(ServoWall, HoldsTargetStress)
       system.step();
       max_deviation = std::max(max_deviation, std::abs(system.walls()[roof].normal_stress() - target));
     }
+  std::cout << "servo lag while the side wall pushes: " << max_deviation << " Pa" << std::endl;
   EXPECT_LT(max_deviation, 0.02 * target);
   // Squeezed sideways by 1.6 mm, the sample pushed the roof up (by a fraction of a millimetre).
   EXPECT_GT(system.walls()[roof].start.y(), settled_height + 1e-4);
