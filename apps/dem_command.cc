@@ -250,9 +250,9 @@ int run_dem_command(const std::string &input_file, bool resume)
   }();
   const std::vector<std::size_t> history = parse_history_ids(history_text, system.particles().n_bodies());
 
-  // Total energy at t = 0 (the reference of the energy balance), also when resuming: the system
+  // The energy at t = 0 (the reference of the energy balance), also when resuming: the system
   // is built from the same input as the run that wrote the checkpoint.
-  const double total_energy_start = system.energy().total();
+  const dem::EnergyBudget energy_start = system.energy();
   const std::filesystem::path out = prm.get("output directory");
   if (out.empty())
     throw std::invalid_argument(where + ": parameter 'output directory' is empty");
@@ -321,10 +321,9 @@ int run_dem_command(const std::string &input_file, bool resume)
 
   const auto write_rows = [&] {
     const dem::EnergyBudget e = system.energy();
-    const double scale = std::max({std::abs(e.gravitational), e.kinetic + e.elastic, 1e-300});
     series << system.time() << ',' << e.kinetic << ',' << e.gravitational << ',' << e.elastic << ','
            << e.friction_dissipated << ',' << e.viscous_dissipated << ',' << e.local_damping_dissipated << ','
-           << e.boundary_work << ',' << (e.total() - total_energy_start) / scale << ','
+           << e.boundary_work << ',' << dem::energy_balance_error(energy_start, e) << ','
            << dem::coordination_number(system) << ',' << dem::unbalanced_force_ratio(system) << ','
            << system.n_touching_pairs() << ',' << system.n_broken_bonds();
     for (const dem::Wall &w : system.walls())
@@ -403,8 +402,11 @@ int run_dem_command(const std::string &input_file, bool resume)
               static_cast<double>(n_steps - first_step) * system.particles().n_bodies() / wall_time);
   summary.set("resumed_from_time_s", resume ? resumed_from_time : std::nan("")); // null for a fresh run
   summary.set("kinetic_energy_J_per_m", e.kinetic);
-  summary.set("energy_balance_error_relative",
-              (e.total() - total_energy_start) / std::max(std::abs(e.gravitational), 1e-300));
+  summary.set("energy_balance_error_relative", dem::energy_balance_error(energy_start, e));
+  summary.set("energy_balance_error_relative_definition",
+              "the change of the energy budget's total since t = 0 (kinetic + gravitational + elastic + dissipated "
+              "- boundary work) over the largest magnitude of its terms at t = 0 or at the end "
+              "(dem::energy_balance_error); the time series' column is the same at each row");
   summary.set("coordination_number", dem::coordination_number(system));
   summary.set("unbalanced_force_ratio", dem::unbalanced_force_ratio(system));
   summary.set("packing_height_m", height_of_packing);
