@@ -210,6 +210,21 @@ TEST_F(DemCommand, EnergyBalanceWithoutGravityIsFinite)
   EXPECT_LT(p.vx[1] - p.vx[0], 0.4 * 0.6);
 }
 
+// The automatic step is the safety factor times the critical step of the scene with its walls
+// (here stiffer than the grains), the one the run prints and the one a refused step is held to.
+TEST_F(DemCommand, AutomaticStepIsTheSafetyFactorOfTheCriticalStep)
+{
+  ASSERT_EQ(error_of(input("subsection Wall contact\n  set normal stiffness = 2e8\n  set shear stiffness = 1e8\nend\n"
+                           "subsection Simulation\n  set end time = 0.002\nend\n")),
+            "");
+  const std::string summary = contents(directory_ / "out" / "summary.json");
+  const auto value = [&](const std::string &key) {
+    const auto at = summary.find("\"" + key + "\": ");
+    return at == std::string::npos ? std::nan("") : std::stod(summary.substr(at + key.size() + 4));
+  };
+  EXPECT_NEAR(value("time_step_s") / value("critical_time_step_s"), 0.5, 1e-9) << summary;
+}
+
 // A run stopped part-way (end time 12.3 ms, off the output and snapshot intervals) and continued
 // with --resume to the full end time (20 ms) ends exactly where the straight run ends, and its
 // output files are those of the straight run: the rows after the checkpoint that a crashed run may

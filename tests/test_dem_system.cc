@@ -692,6 +692,41 @@ TEST(BadInput, TimeStepAndThreads)
   EXPECT_THROW(DemSystem(p, contact, no_threads), std::invalid_argument);
 }
 
+// One definition of the automatic step: the safety factor times the critical step of the system
+// as it is, walls included. Walls twice as stiff as the grains lower the critical step by sqrt(2)
+// (omega^2 scales with kn + ks); the step follows, to exactly the safety factor of the new limit.
+// (Before, the step fixed with the grains alone was kept while it stayed below the new limit:
+// 0.5 x the grains' critical step, 0.71 of the system's; the run printed one figure and a refused
+// user step named the other.)
+TEST(TimeStep, AutomaticStepIsTheSafetyFactorOfTheSystemWithItsWalls)
+{
+  DemSettings s;
+  s.time_step_safety = 0.5;
+  DemSystem system(grid_sample(6, 4, 0.1), LinearContactLaw(law(20.0, 1.0)), s);
+  const double grains_only = system.critical_time_step();
+  EXPECT_EQ(system.time_step(), 0.5 * grains_only);
+  ContactParameters stiff = law(20.0, 1.0);
+  stiff.normal_stiffness *= 2.0;
+  stiff.shear_stiffness *= 2.0;
+  add_box(system, 6 * 2.5 * r_max, 4 * 2.5 * r_max, LinearContactLaw(stiff));
+  EXPECT_NEAR(system.critical_time_step(), grains_only / std::sqrt(2.0), 1e-12 * grains_only);
+  EXPECT_EQ(system.time_step(), 0.5 * system.critical_time_step());
+  // A step the user chooses between the two limits is refused, naming the walls' limit.
+  s.time_step = 0.9 * grains_only;
+  DemSystem chosen(grid_sample(6, 4, 0.1), LinearContactLaw(law(20.0, 1.0)), s);
+  try
+    {
+      add_box(chosen, 6 * 2.5 * r_max, 4 * 2.5 * r_max, LinearContactLaw(stiff));
+      ADD_FAILURE() << "a step above the walls' limit was accepted";
+    }
+  catch (const std::invalid_argument &e)
+    {
+      std::ostringstream limit;
+      limit << system.critical_time_step();
+      EXPECT_NE(std::string(e.what()).find("stable limit " + limit.str()), std::string::npos) << e.what();
+    }
+}
+
 // Renumbering bodies in Morton order keeps every body exactly (found by its id, with its discs),
 // and brings neighbours close in memory: on a randomly numbered grid, the mean index distance
 // between neighbours falls by more than 10 (measured: 543, about n/3, before; 34 after).
