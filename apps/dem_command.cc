@@ -333,13 +333,18 @@ int run_dem_command(const std::string &input_file, bool resume)
     for (std::size_t b : history)
       history_out << system.time() << ',' << p.body_id[b] << ',' << p.x[b] << ',' << p.y[b] << ','
                   << p.rotation[b] << ',' << p.vx[b] << ',' << p.vy[b] << ',' << p.omega[b] << '\n';
+    // Flushed at every row: a run killed later keeps them, and a full disk stops the run here,
+    // naming the file.
+    if (!series.flush())
+      throw std::runtime_error("cannot write " + (out / "time_series.csv").string() +
+                               " (is the disk full, or the directory not writable?)");
+    if (history_out.is_open() && !history_out.flush())
+      throw std::runtime_error("cannot write " + (out / "particle_history.csv").string() +
+                               " (is the disk full, or the directory not writable?)");
   };
-  // The rows up to the checkpoint reach the files first, so that a resumed run finds them.
-  const auto save_checkpoint = [&] {
-    series.flush();
-    history_out.flush();
-    dem::write_checkpoint(system.export_state(), checkpoint_file);
-  };
+  // The rows up to the checkpoint are in the files already (write_rows flushes them), so that
+  // a resumed run finds them.
+  const auto save_checkpoint = [&] { dem::write_checkpoint(system.export_state(), checkpoint_file); };
 
   const auto wall_start = std::chrono::steady_clock::now();
   std::cout << "geohybrid dem: " << system.particles().n_bodies() << " particles ("

@@ -202,6 +202,7 @@ public:
                                             balance_error_}};
     rows_.insert(rows_.end(), row.begin(), row.end());
     write_row(row.data());
+    flush();
   }
 
   std::size_t n_rows() const { return rows_.size() / n_columns; }
@@ -227,13 +228,12 @@ public:
     largest_balance_error_ = e[3];
     for (std::size_t r = 0; r < n_rows(); ++r)
       write_row(&rows_[r * n_columns]);
+    flush();
   }
 
   void finish(Summary &summary)
   {
-    file_.flush();
-    if (!file_)
-      throw std::runtime_error("writing " + path_.string() + " failed");
+    flush();
     summary.set("coupling_force_imbalance_max_N_per_m", largest_imbalance_);
     summary.set("coupling_force_max_N_per_m", largest_force_);
     summary.set("energy_balance_error_relative", balance_error_);
@@ -248,6 +248,14 @@ public:
   }
 
 private:
+  /// At every row, as the curve files (PulloutOutput): a killed run keeps its rows, a full disk
+  /// stops the run naming the file.
+  void flush()
+  {
+    if (!file_.flush())
+      throw std::runtime_error("cannot write " + path_.string() + " (is the disk full, or the directory not writable?)");
+  }
+
   void write_row(const double *row)
   {
     for (std::size_t k = 0; k < n_columns; ++k)
