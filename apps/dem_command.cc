@@ -10,6 +10,7 @@
 #include "dem_command.h"
 
 #include "contact_parameters.h"
+#include "interrupt.h"
 #include "plot.h"
 #include "run_directory.h"
 
@@ -373,6 +374,18 @@ int run_dem_command(const std::string &input_file, bool resume)
         save_checkpoint();
       if (k % 256 == 0)
         progress.update(static_cast<double>(k - first_step));
+      // A signal (interrupt.h): this step done, a checkpoint whatever the interval, so that
+      // --resume goes on bit for bit; no final_particles.csv, no summary.json.
+      if (const int signal = interrupt_signal(); signal != 0 && k < n_steps)
+        {
+          save_checkpoint();
+          std::cerr << '\n';
+          throw Interrupted(signal,
+                            "at t = " + number(system.time(), 6) + " s (step " + std::to_string(k) + " of " +
+                              std::to_string(n_steps) + "): the checkpoint " + checkpoint_file.string() +
+                              " and the time series so far are written, no summary.json",
+                            true);
+        }
     }
   progress.finish();
   if (checkpoint_interval > 0.0)

@@ -1,5 +1,7 @@
 #include "pullout_fem_mode.h"
 
+#include "interrupt.h"
+
 #include "apps/pullout_output.h"
 #include "apps/run_directory.h"
 
@@ -329,6 +331,14 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
         }
       progress->update(point.head_displacement);
     });
+    // A signal (interrupt.h) is looked at here, at each point of the curve, by every rank at
+    // once (each may have received it at another step): they stop together, the curve so far
+    // written. No checkpoint: this mode has none.
+    if (const int signal = dealii::Utilities::MPI::max(interrupt_signal(), comm); signal != 0)
+      throw Interrupted(signal,
+                        "at " + number(1e3 * point.head_displacement, 4) + " mm of the pull: the curve so far is in " +
+                          out.string() + ", no summary.json (fem mode writes no checkpoints)",
+                        false);
   };
   fem::PulloutResult result;
   if (c.implicit_solver)

@@ -1,5 +1,6 @@
 #include "pullout_output.h"
 
+#include "apps/interrupt.h"
 #include "apps/plot.h"
 
 #include <algorithm>
@@ -187,6 +188,18 @@ bool pull_with_checkpoints(dem::PullOut &pull, const std::function<void(const de
       if (pull.step())
         record(pull.last_point());
       ++steps_now;
+      // A signal (interrupt.h): the step is done, its point recorded; the checkpoint is the
+      // periodic one, written whatever the interval, so that --resume goes on bit for bit.
+      if (const int signal = interrupt_signal(); signal != 0 && !pull.finished())
+        {
+          save_checkpoint();
+          std::cerr << '\n';
+          throw Interrupted(signal,
+                            "at " + number(1e3 * pull.head_displacement(), 4) + " mm of the pull (" +
+                              std::to_string(steps_now) + " steps of this run): the checkpoint " +
+                              checkpoint_file.string() + " and the curve files so far are written, no summary.json",
+                            true);
+        }
       const bool stop = stop_after > 0 && steps_now >= stop_after && !pull.finished();
       if (checkpoint_due.due() || stop)
         save_checkpoint();

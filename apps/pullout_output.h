@@ -92,6 +92,8 @@ private:
 /// recorded point and `save_checkpoint` every `checkpoint_interval` s of wall time (0: never).
 /// With `stop_after` > 0, stops after that many steps of this invocation (unless the pull is
 /// done), saves a checkpoint, says so naming `checkpoint_file`, and returns false; true at the end.
+/// After a SIGINT or SIGTERM (interrupt.h) it finishes the step, saves a checkpoint (whatever the
+/// interval) and throws Interrupted.
 bool pull_with_checkpoints(dem::PullOut &pull, const std::function<void(const dem::PullPoint &)> &record,
                            const std::function<void()> &save_checkpoint, double checkpoint_interval,
                            std::uint64_t stop_after, const std::filesystem::path &checkpoint_file);
