@@ -23,7 +23,9 @@ void declare_contact_parameters(dealii::ParameterHandler &prm, const dem::Contac
   prm.declare_entry("tensile strength", number(d.tensile_strength), Double(0.0),
                     "Contact tensile strength a_n; 0 = no tension [N/m]");
   prm.declare_entry("restitution coefficient", number(d.restitution), Double(1e-6, 1.0),
-                    "Normal coefficient of restitution setting a viscous dashpot; 1 = none [-]");
+                    "Normal coefficient of restitution e setting a viscous dashpot of damping ratio "
+                    "-ln e / sqrt(pi^2 + ln^2 e); the dashpot never makes an unbonded contact pull, so a rebound "
+                    "keeps a little more than e (0.55 at e = 0.5: dem/contact_law.h); 1 = none [-]");
   prm.declare_entry("bond new contacts", d.bond_new_contacts ? "true" : "false", Bool(),
                     "Whether a contact starts bonded (carrying a_s and a_n) when it forms, as in a cementing "
                     "soil; otherwise only the contacts touching at the start are bonded [-]");

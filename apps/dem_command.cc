@@ -10,6 +10,7 @@
 #include "dem_command.h"
 
 #include "contact_parameters.h"
+#include "interrupt.h"
 #include "plot.h"
 #include "run_directory.h"
 
@@ -250,9 +251,9 @@ int run_dem_command(const std::string &input_file, bool resume)
   }();
   const std::vector<std::size_t> history = parse_history_ids(history_text, system.particles().n_bodies());
 
-  // Total energy at t = 0 (the reference of the energy balance), also when resuming: the system
+  // The energy at t = 0 (the reference of the energy balance), also when resuming: the system
   // is built from the same input as the run that wrote the checkpoint.
-  const double total_energy_start = system.energy().total();
+  const dem::EnergyBudget energy_start = system.energy();
   const std::filesystem::path out = prm.get("output directory");
   if (out.empty())
     throw std::invalid_argument(where + ": parameter 'output directory' is empty");
@@ -321,10 +322,9 @@ int run_dem_command(const std::string &input_file, bool resume)
 
   const auto write_rows = [&] {
     const dem::EnergyBudget e = system.energy();
-    const double scale = std::max({std::abs(e.gravitational), e.kinetic + e.elastic, 1e-300});
     series << system.time() << ',' << e.kinetic << ',' << e.gravitational << ',' << e.elastic << ','
            << e.friction_dissipated << ',' << e.viscous_dissipated << ',' << e.local_damping_dissipated << ','
-           << e.boundary_work << ',' << (e.total() - total_energy_start) / scale << ','
+           << e.boundary_work << ',' << dem::energy_balance_error(energy_start, e) << ','
            << dem::coordination_number(system) << ',' << dem::unbalanced_force_ratio(system) << ','
            << system.n_touching_pairs() << ',' << system.n_broken_bonds();
     for (const dem::Wall &w : system.walls())
@@ -334,13 +334,18 @@ int run_dem_command(const std::string &input_file, bool resume)
     for (std::size_t b : history)
       history_out << system.time() << ',' << p.body_id[b] << ',' << p.x[b] << ',' << p.y[b] << ','
                   << p.rotation[b] << ',' << p.vx[b] << ',' << p.vy[b] << ',' << p.omega[b] << '\n';
+    // Flushed at every row: a run killed later keeps them, and a full disk stops the run here,
+    // naming the file.
+    if (!series.flush())
+      throw std::runtime_error("cannot write " + (out / "time_series.csv").string() +
+                               " (is the disk full, or the directory not writable?)");
+    if (history_out.is_open() && !history_out.flush())
+      throw std::runtime_error("cannot write " + (out / "particle_history.csv").string() +
+                               " (is the disk full, or the directory not writable?)");
   };
-  // The rows up to the checkpoint reach the files first, so that a resumed run finds them.
-  const auto save_checkpoint = [&] {
-    series.flush();
-    history_out.flush();
-    dem::write_checkpoint(system.export_state(), checkpoint_file);
-  };
+  // The rows up to the checkpoint are in the files already (write_rows flushes them), so that
+  // a resumed run finds them.
+  const auto save_checkpoint = [&] { dem::write_checkpoint(system.export_state(), checkpoint_file); };
 
   const auto wall_start = std::chrono::steady_clock::now();
   std::cout << "geohybrid dem: " << system.particles().n_bodies() << " particles ("
@@ -369,6 +374,18 @@ int run_dem_command(const std::string &input_file, bool resume)
         save_checkpoint();
       if (k % 256 == 0)
         progress.update(static_cast<double>(k - first_step));
+      // A signal (interrupt.h): this step done, a checkpoint whatever the interval, so that
+      // --resume goes on bit for bit; no final_particles.csv, no summary.json.
+      if (const int signal = interrupt_signal(); signal != 0 && k < n_steps)
+        {
+          save_checkpoint();
+          std::cerr << '\n';
+          throw Interrupted(signal,
+                            "at t = " + number(system.time(), 6) + " s (step " + std::to_string(k) + " of " +
+                              std::to_string(n_steps) + "): the checkpoint " + checkpoint_file.string() +
+                              " and the time series so far are written, no summary.json",
+                            true);
+        }
     }
   progress.finish();
   if (checkpoint_interval > 0.0)
@@ -403,8 +420,11 @@ int run_dem_command(const std::string &input_file, bool resume)
               static_cast<double>(n_steps - first_step) * system.particles().n_bodies() / wall_time);
   summary.set("resumed_from_time_s", resume ? resumed_from_time : std::nan("")); // null for a fresh run
   summary.set("kinetic_energy_J_per_m", e.kinetic);
-  summary.set("energy_balance_error_relative",
-              (e.total() - total_energy_start) / std::max(std::abs(e.gravitational), 1e-300));
+  summary.set("energy_balance_error_relative", dem::energy_balance_error(energy_start, e));
+  summary.set("energy_balance_error_relative_definition",
+              "the change of the energy budget's total since t = 0 (kinetic + gravitational + elastic + dissipated "
+              "- boundary work) over the largest magnitude of its terms at t = 0 or at the end "
+              "(dem::energy_balance_error); the time series' column is the same at each row");
   summary.set("coordination_number", dem::coordination_number(system));
   summary.set("unbalanced_force_ratio", dem::unbalanced_force_ratio(system));
   summary.set("packing_height_m", height_of_packing);

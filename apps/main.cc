@@ -20,6 +20,7 @@
 #include "apps/compare_command.h"
 #include "apps/coupling_test_command.h"
 #include "apps/dem_command.h"
+#include "apps/interrupt.h"
 #include "apps/pullout_command.h"
 #include "apps/pullout_seeds.h"
 
@@ -60,19 +61,42 @@ const std::map<std::string, Command> &commands()
   return table;
 }
 
+/// This invocation as a shell command (arguments quoted where needed), with --resume or without,
+/// under `mpirun -np P` if it runs on P > 1 ranks.
+std::string command_line(int argc, char **argv, bool resume)
+{
+  const auto quoted = [](const std::string &word) {
+    if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=.,/:@%") ==
+                           std::string::npos)
+      return word;
+    std::string text = "'";
+    for (const char c : word)
+      text += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return text + "'";
+  };
+  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  std::string line = n_ranks > 1 ? "mpirun -np " + std::to_string(n_ranks) + " " : "";
+  line += quoted(argv[0]);
+  for (int k = 1; k < argc; ++k)
+    if (std::strcmp(argv[k], "--resume"))
+      line += " " + quoted(argv[k]);
+  return resume ? line + " --resume" : line;
+}
+
 void print_usage(std::ostream &out)
 {
   out << "geohybrid: 2D DEM of soil coupled with a deal.II continuum, for geosynthetic anchorages\n\n"
          "usage: geohybrid COMMAND FILE.prm|FILE.json [--resume]\n"
          "       geohybrid COMMAND --print-parameters   (every parameter, default, unit and meaning)\n"
-         "       geohybrid pullout FILE.prm --seeds N   (N fills, seeds s, s+1, ...; the averaged curve; under mpirun spread over the ranks)\n"
+         "       geohybrid pullout FILE.prm --seeds N [--resume]   (N fills, seeds s, s+1, ...; the averaged curve; under mpirun spread over the ranks)\n"
          "       geohybrid pullout FILE.prm --print-parameters-hash   (FILE checked as a run would, nothing\n"
          "                                              written; the hash its summary.json would hold)\n"
          "       geohybrid compare DIR1 DIR2 ... [--output FILE.png]   (pull-out curves in one PNG)\n"
          "       geohybrid --help\n\n"
          "--resume continues the run of FILE from its last checkpoint, OUTPUT/checkpoint.h5\n"
-         "(written every 'Simulation/checkpoint interval' seconds and at the end); the end time\n"
-         "may have been raised meanwhile.\n\ncommands:\n";
+         "(written every 'Simulation/checkpoint interval' seconds, at the end, and when SIGINT or\n"
+         "SIGTERM stops a dem or pullout run: Ctrl-C); the end time may have been raised meanwhile.\n"
+         "With --seeds N it keeps the seeds that finished and continues the others.\n\ncommands:\n";
   for (const auto &[name, command] : commands())
     out << "  " << name << std::string(15 - std::min<std::size_t>(14, name.size()), ' ') << command.summary << '\n';
 }
@@ -141,7 +165,7 @@ int main(int argc, char **argv)
         }
     }
   if (print_parameters ? (resume || n_seeds > 0 || print_hash || !input_file.empty())
-                       : (input_file.empty() || (resume && n_seeds > 0) || (print_hash && (resume || n_seeds > 0))))
+                       : (input_file.empty() || (print_hash && (resume || n_seeds > 0))))
     {
       std::cerr << "geohybrid " << argv[1] << ": expected one input file (optionally followed by --resume, or for "
                 << "pullout by --seeds N or --print-parameters-hash) or --print-parameters\n";
@@ -163,9 +187,23 @@ int main(int argc, char **argv)
             std::cout << hash << std::endl;
           return 0;
         }
+      // The commands whose loops stop cleanly on a signal (apps/interrupt.h); the others keep
+      // the default action, which ends them at once.
+      if (!std::strcmp(argv[1], "dem") || !std::strcmp(argv[1], "pullout"))
+        geohybrid::apps::install_interrupt_handlers();
       if (n_seeds > 0)
-        return geohybrid::apps::run_pullout_seeds(input_file, n_seeds);
+        return geohybrid::apps::run_pullout_seeds(input_file, n_seeds, MPI_COMM_WORLD, resume);
       return found->second.run(input_file, resume);
+    }
+  catch (const geohybrid::apps::Interrupted &e)
+    {
+      // One line (from rank 0 under mpirun, where every rank stops): where the run stopped, what
+      // it saved, and the command that goes on from there.
+      if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        std::cout << "geohybrid " << argv[1] << ": interrupted by " << geohybrid::apps::signal_name(e.signal()) << ' '
+                  << e.what() << (e.resumable() ? "; continue with: " : "; run it again: ")
+                  << command_line(argc, argv, e.resumable()) << std::endl;
+      return e.exit_status();
     }
   catch (const std::exception &e)
     {

@@ -29,6 +29,7 @@
 
 #include "contact_parameters.h"
 #include "parameters_hash.h"
+#include "interrupt.h"
 #include "pullout_fem_mode.h"
 #include "pullout_hybrid_mode.h"
 #include "pullout_field_output.h"
@@ -379,7 +380,10 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   else
     {
       ProgressReport fill_progress("filling the tank", 1.0);
-      filled.emplace(dem::fill_pull_out_tank(in.tank, [&](double f) { fill_progress.update(f); }));
+      filled.emplace(dem::fill_pull_out_tank(in.tank, [&](double f) {
+        fill_progress.update(f);
+        throw_if_interrupted("filling the tank"); // a partial fill cannot be resumed
+      }));
       fill_progress.finish();
       fill_time = seconds();
       before = dem::measure_sheet_level_stress(filled->tank.system, *filled, g, in.stress_band);

@@ -1,6 +1,8 @@
 #include "pullout_fem_mode.h"
 
 #include "apps/parameters_hash.h"
+#include "interrupt.h"
+
 #include "apps/pullout_output.h"
 #include "apps/run_directory.h"
 
@@ -314,24 +316,33 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
                     middle = end / 2;
   const auto record = [&](const fem::PulloutCurvePoint &point, const fem::TrussSheet &sheet,
                           const std::vector<dealii::Tensor<1, fem::dim>> &u) {
-    if (!writer)
-      return;
-    // The clamp (node 0) is the sheet's first node inside the tank: it sits on the front wall.
-    output->add_point(point.head_displacement, point.head_tension, {{u[0][0], u[middle][0], u[end][0]}});
-    // A profile is the sheet now, at the clamp's displacement now (with the explicit solver the
-    // curve's point is the mean over its interval).
-    if (output->profile_due(u[0][0]))
-      {
-        const std::vector<double> T = sheet.axial_forces(u);
-        std::vector<SheetTensionRow> rows;
-        for (std::size_t k = 0; k < T.size(); ++k)
-          {
-            const auto x = 0.5 * (sheet.node(k) + u[k] + sheet.node(k + 1) + u[k + 1]);
-            rows.push_back({k, 0.5 * (arc_lengths[k] + arc_lengths[k + 1]), x[0], x[1], T[k]});
-          }
-        output->add_profile(u[0][0], rows);
-      }
-    progress->update(point.head_displacement);
+    // Rank 0 writes; a failed write (a full disk) stops every rank, not only the writer.
+    on_rank_zero(comm, [&] {
+      // The clamp (node 0) is the sheet's first node inside the tank: it sits on the front wall.
+      output->add_point(point.head_displacement, point.head_tension, {{u[0][0], u[middle][0], u[end][0]}});
+      // A profile is the sheet now, at the clamp's displacement now (with the explicit solver the
+      // curve's point is the mean over its interval).
+      if (output->profile_due(u[0][0]))
+        {
+          const std::vector<double> T = sheet.axial_forces(u);
+          std::vector<SheetTensionRow> rows;
+          for (std::size_t k = 0; k < T.size(); ++k)
+            {
+              const auto x = 0.5 * (sheet.node(k) + u[k] + sheet.node(k + 1) + u[k + 1]);
+              rows.push_back({k, 0.5 * (arc_lengths[k] + arc_lengths[k + 1]), x[0], x[1], T[k]});
+            }
+          output->add_profile(u[0][0], rows);
+        }
+      progress->update(point.head_displacement);
+    });
+    // A signal (interrupt.h) is looked at here, at each point of the curve, by every rank at
+    // once (each may have received it at another step): they stop together, the curve so far
+    // written. No checkpoint: this mode has none.
+    if (const int signal = dealii::Utilities::MPI::max(interrupt_signal(), comm); signal != 0)
+      throw Interrupted(signal,
+                        "at " + number(1e3 * point.head_displacement, 4) + " mm of the pull: the curve so far is in " +
+                          out.string() + ", no summary.json (fem mode writes no checkpoints)",
+                        false);
   };
   fem::PulloutResult result;
   if (c.implicit_solver)

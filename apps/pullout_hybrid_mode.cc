@@ -1,5 +1,6 @@
 #include "pullout_hybrid_mode.h"
 
+#include "apps/interrupt.h"
 #include "apps/pullout_fem_mode.h"
 #include "apps/parameters_hash.h"
 #include "apps/pullout_output.h"
@@ -22,6 +23,7 @@
 #include <iostream>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 namespace geohybrid::apps
 {
@@ -203,6 +205,7 @@ public:
                                             balance_error_}};
     rows_.insert(rows_.end(), row.begin(), row.end());
     write_row(row.data());
+    flush();
   }
 
   std::size_t n_rows() const { return rows_.size() / n_columns; }
@@ -228,13 +231,12 @@ public:
     largest_balance_error_ = e[3];
     for (std::size_t r = 0; r < n_rows(); ++r)
       write_row(&rows_[r * n_columns]);
+    flush();
   }
 
   void finish(Summary &summary)
   {
-    file_.flush();
-    if (!file_)
-      throw std::runtime_error("writing " + path_.string() + " failed");
+    flush();
     summary.set("coupling_force_imbalance_max_N_per_m", largest_imbalance_);
     summary.set("coupling_force_max_N_per_m", largest_force_);
     summary.set("energy_balance_error_relative", balance_error_);
@@ -249,6 +251,14 @@ public:
   }
 
 private:
+  /// At every row, as the curve files (PulloutOutput): a killed run keeps its rows, a full disk
+  /// stops the run naming the file.
+  void flush()
+  {
+    if (!file_.flush())
+      throw std::runtime_error("cannot write " + path_.string() + " (is the disk full, or the directory not writable?)");
+  }
+
   void write_row(const double *row)
   {
     for (std::size_t k = 0; k < n_columns; ++k)
@@ -304,6 +314,9 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   // 1. The box filled (or taken from its checkpoint), the continuum built and tied, both settled.
   double fill_time = 0.0;
   std::optional<dem::PullOutTank> filled;
+  // With 'checkpoint interval' = 0 the filled box is kept here instead, and written with the
+  // first checkpoint a signal or 'stop after steps' asks for: --resume needs both files.
+  std::optional<std::pair<dem::DemSystemState, dem::CommandState>> unwritten_box;
   if (resume && std::filesystem::exists(box_file))
     {
       dem::CommandState saved_box;
@@ -328,16 +341,19 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
                   << " (the run stopped before its box was full): filling the box again from the start" << std::endl;
       std::filesystem::remove(checkpoint_file);
       ProgressReport fill_progress("filling the particle box", 1.0);
-      filled.emplace(dem::fill_pull_out_tank(box.box_tank, [&](double f) { fill_progress.update(f); }));
+      filled.emplace(dem::fill_pull_out_tank(box.box_tank, [&](double f) {
+        fill_progress.update(f);
+        throw_if_interrupted("filling the particle box"); // a partial fill cannot be resumed
+      }));
       fill_progress.finish();
       fill_time = seconds();
+      dem::CommandState c;
+      dem::store_pullout_tank(*filled, c);
+      c.reals["fill_wall_time_s"] = {fill_time};
       if (checkpoint_interval > 0.0)
-        {
-          dem::CommandState c;
-          dem::store_pullout_tank(*filled, c);
-          c.reals["fill_wall_time_s"] = {fill_time};
-          dem::write_checkpoint(filled->tank.system.export_state(), c, box_file);
-        }
+        dem::write_checkpoint(filled->tank.system.export_state(), c, box_file);
+      else
+        unwritten_box.emplace(filled->tank.system.export_state(), std::move(c));
     }
   std::optional<coupling::HybridPullOut> hybrid;
   hybrid.emplace(spec, where, std::move(*filled));
@@ -417,6 +433,11 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
     progress.update(p.head_displacement - u_first);
   };
   const auto save_checkpoint = [&] {
+    if (unwritten_box)
+      {
+        dem::write_checkpoint(unwritten_box->first, unwritten_box->second, box_file);
+        unwritten_box.reset();
+      }
     dem::CommandState c;
     c.name = "pullout";
     c.reals["wall_time_s"] = {earlier_wall_time + seconds()};

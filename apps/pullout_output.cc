@@ -1,5 +1,6 @@
 #include "pullout_output.h"
 
+#include "apps/interrupt.h"
 #include "apps/plot.h"
 
 #include <algorithm>
@@ -26,9 +27,21 @@ PulloutOutput::PulloutOutput(const std::filesystem::path &directory, double shee
   per_sheet_ << "head_displacement_m,head_tension_kN\n";
   displacements_ << "head_displacement_m,beginning_displacement_m,middle_displacement_m,end_displacement_m\n";
   profiles_ << "head_displacement_m,node,arc_length_m,x_m,y_m,tension_kN_per_m\n";
-  for (std::ofstream *f : {&curve_, &per_sheet_, &displacements_, &profiles_})
-    if (!*f)
-      throw std::runtime_error("cannot write the results in " + directory.string());
+  flush();
+}
+
+void PulloutOutput::flush()
+{
+  // Flushed at every point, so that the files of a run killed or interrupted hold every row
+  // recorded; a failed write (a full disk) stops the run naming the file, not later at its end.
+  const std::pair<std::ofstream *, const char *> files[] = {{&curve_, "pullout_curve.csv"},
+                                                            {&per_sheet_, "pullout_curve_sheet.csv"},
+                                                            {&displacements_, "sheet_displacements.csv"},
+                                                            {&profiles_, "sheet_tension.csv"}};
+  for (const auto &[file, name] : files)
+    if (!file->flush())
+      throw std::runtime_error("cannot write " + (directory_ / name).string() +
+                               " (is the disk full, or the directory not writable?)");
 }
 
 PulloutOutput::PulloutOutput(const std::filesystem::path &directory, double sheet_width, std::vector<double> profiles_at,
@@ -45,6 +58,7 @@ PulloutOutput::PulloutOutput(const std::filesystem::path &directory, double shee
     write_profile_row(&profiles[k]);
   profile_rows_ = profiles;
   next_profile_ = static_cast<std::size_t>(saved.count("next_profile", 1)[0]);
+  flush();
 }
 
 void PulloutOutput::store(dem::CommandState &command) const
@@ -59,6 +73,7 @@ void PulloutOutput::add_point(double u, double T, const std::array<double, 3> &m
   const double row[5] = {u, T, moved[0], moved[1], moved[2]};
   points_.insert(points_.end(), row, row + 5);
   write_point(row);
+  flush();
 }
 
 void PulloutOutput::write_point(const double *row)
@@ -94,14 +109,13 @@ void PulloutOutput::add_profile(double u, const std::vector<SheetTensionRow> &ro
         profile_rows_.insert(profile_rows_.end(), row, row + 6);
         write_profile_row(row);
       }
+  flush();
 }
 
 void PulloutOutput::finish(const std::string &label, const std::optional<double> &experimental_T_max,
                            double final_displacement)
 {
-  for (std::ofstream *f : {&curve_, &per_sheet_, &displacements_, &profiles_})
-    if (!f->flush())
-      throw std::runtime_error("cannot write the results in " + directory_.string());
+  flush();
   std::vector<PlotSeries> series{{directory_ / "pullout_curve.csv", 1, 2, label, 1e3, 1.0}};
   if (experimental_T_max)
     {
@@ -109,6 +123,8 @@ void PulloutOutput::finish(const std::string &label, const std::optional<double>
       std::ofstream f(line);
       f << "head_displacement_m,T_max_kN_per_m\n0," << number(*experimental_T_max / 1e3) << '\n'
         << number(final_displacement) << ',' << number(*experimental_T_max / 1e3) << '\n';
+      if (!f.flush())
+        throw std::runtime_error("cannot write " + line.string() + " (is the disk full, or the directory not writable?)");
       series.push_back({line, 1, 2, "experiment, T_max", 1e3, 1.0});
     }
   plot_png(directory_ / "pullout_curve.png", "Pull-out, head tension",
@@ -172,6 +188,18 @@ bool pull_with_checkpoints(dem::PullOut &pull, const std::function<void(const de
       if (pull.step())
         record(pull.last_point());
       ++steps_now;
+      // A signal (interrupt.h): the step is done, its point recorded; the checkpoint is the
+      // periodic one, written whatever the interval, so that --resume goes on bit for bit.
+      if (const int signal = interrupt_signal(); signal != 0 && !pull.finished())
+        {
+          save_checkpoint();
+          std::cerr << '\n';
+          throw Interrupted(signal,
+                            "at " + number(1e3 * pull.head_displacement(), 4) + " mm of the pull (" +
+                              std::to_string(steps_now) + " steps of this run): the checkpoint " +
+                              checkpoint_file.string() + " and the curve files so far are written, no summary.json",
+                            true);
+        }
       const bool stop = stop_after > 0 && steps_now >= stop_after && !pull.finished();
       if (checkpoint_due.due() || stop)
         save_checkpoint();

@@ -50,15 +50,16 @@ public:
 
   /// One point of the curve: head displacement [m], head tension [N/m], and the displacements
   /// along the pull of the sheet's beginning (first node inside the tank), the middle and the end
-  /// of its lower part [m].
+  /// of its lower part [m]. Its rows reach the files at once (flushed: a run killed later keeps
+  /// them); a failed write (a full disk) throws std::runtime_error naming the file. So does
+  /// add_profile().
   void add_point(double head_displacement, double head_tension, const std::array<double, 3> &sheet_displacements);
   /// Whether the next of 'tension profiles at' has been reached at this head displacement.
   bool profile_due(double head_displacement) const;
   /// Writes the profile once for each of 'tension profiles at' reached by `head_displacement`.
   void add_profile(double head_displacement, const std::vector<SheetTensionRow> &rows);
 
-  /// Flushes the CSV files (throws std::runtime_error naming the directory if that fails) and
-  /// draws pullout_curve.png: the curve labelled `label`, and the experimental T_max [N/m] as a
+  /// Draws pullout_curve.png: the curve labelled `label`, and the experimental T_max [N/m] as a
   /// line over [0, final_displacement] if given.
   void finish(const std::string &label, const std::optional<double> &experimental_T_max, double final_displacement);
 
@@ -71,6 +72,8 @@ public:
                     const std::optional<double> &experimental_T_max) const;
 
 private:
+  /// Flushes the four CSV files; throws std::runtime_error naming the file that failed.
+  void flush();
   void write_point(const double *row);
   void write_profile_row(const double *row);
 
@@ -89,6 +92,8 @@ private:
 /// recorded point and `save_checkpoint` every `checkpoint_interval` s of wall time (0: never).
 /// With `stop_after` > 0, stops after that many steps of this invocation (unless the pull is
 /// done), saves a checkpoint, says so naming `checkpoint_file`, and returns false; true at the end.
+/// After a SIGINT or SIGTERM (interrupt.h) it finishes the step, saves a checkpoint (whatever the
+/// interval) and throws Interrupted.
 bool pull_with_checkpoints(dem::PullOut &pull, const std::function<void(const dem::PullPoint &)> &record,
                            const std::function<void()> &save_checkpoint, double checkpoint_interval,
                            std::uint64_t stop_after, const std::filesystem::path &checkpoint_file);

@@ -1,6 +1,7 @@
 #include "pullout_seeds.h"
 
 #include "compare_command.h"
+#include "interrupt.h"
 #include "plot.h"
 #include "pullout_command.h"
 #include "pullout_input.h"
@@ -45,7 +46,7 @@ Spread spread_of(const std::vector<double> &v)
 }
 } // namespace
 
-int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm communicator)
+int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm communicator, bool resume)
 {
   const bool with_mpi = dealii::Utilities::MPI::job_supports_mpi();
   const unsigned int rank = with_mpi ? dealii::Utilities::MPI::this_mpi_process(communicator) : 0;
@@ -78,22 +79,36 @@ int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm commu
     }
   barrier();
 
-  // This rank's seeds, each on MPI_COMM_SELF; a failure is kept until every rank is done, so that
-  // no rank waits for one that has stopped.
-  std::string failure, seeds;
+  // This rank's seeds, each on MPI_COMM_SELF; a failure or a signal (interrupt.h: mpirun passes
+  // it to every rank) is kept until every rank is done, so that no rank waits for one that has
+  // stopped. A resumed ensemble keeps the seeds that finished (their summary.json) and resumes
+  // the others from their checkpoints.
+  std::string failure, seeds, stopped;
+  int signal = 0;
+  bool resumable = true;
   for (int k = 0; k < n_seeds; ++k)
     {
       const std::string seed = std::to_string(first_seed + k);
       seeds += (k ? ", " : "") + seed;
-      if (static_cast<unsigned int>(k) % n_ranks != rank || !failure.empty())
+      if (static_cast<unsigned int>(k) % n_ranks != rank || !failure.empty() || signal != 0)
         continue;
       const std::filesystem::path directory = out / ("seed_" + seed);
+      if (resume && std::filesystem::exists(directory / "summary.json"))
+        continue;
+      if ((signal = interrupt_signal()) != 0) // came between two seeds: start no other
+        continue;
       std::cout << "geohybrid pullout: seed " << seed << " (" << k + 1 << " of " << n_seeds << ") in "
                 << directory.string() << (n_ranks > 1 ? " on rank " + std::to_string(rank) : std::string()) << std::endl;
       try
         {
-          run_pullout_command(input_file, false, with_mpi ? MPI_COMM_SELF : communicator,
+          run_pullout_command(input_file, resume, with_mpi ? MPI_COMM_SELF : communicator,
                               {{"output directory", directory.string()}, {"Filling/seed", seed}});
+        }
+      catch (const Interrupted &e)
+        {
+          signal = e.signal();
+          resumable = e.resumable();
+          stopped = "seed " + seed + " stopped " + e.what() + "; ";
         }
       catch (const std::exception &e)
         {
@@ -102,6 +117,16 @@ int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm commu
     }
   const unsigned int n_failed =
     with_mpi ? dealii::Utilities::MPI::sum(failure.empty() ? 0u : 1u, communicator) : (failure.empty() ? 0u : 1u);
+  if (with_mpi)
+    {
+      signal = dealii::Utilities::MPI::max(signal, communicator);
+      resumable = dealii::Utilities::MPI::min(resumable ? 1u : 0u, communicator) == 1u;
+    }
+  if (signal != 0 && n_failed == 0)
+    throw Interrupted(signal,
+                      "before the ensemble's end: " + stopped + "the seeds that finished are kept in " +
+                        out.string() + ", no summary.json there",
+                      resumable);
   if (!failure.empty())
     throw std::runtime_error("geohybrid pullout --seeds: " + failure);
   if (n_failed > 0)

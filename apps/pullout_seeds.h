@@ -17,6 +17,10 @@
 // ranks"): rank r runs the seeds k = r, r + P, ... on MPI_COMM_SELF (dem and hybrid runs are one
 // process each; a fem run then keeps to its rank), and rank 0 averages once all are done. Every
 // seed's files are those of the serial run, bit for bit: a run does not depend on where it ran.
+//
+// A SIGINT or SIGTERM (apps/interrupt.h; mpirun passes it to every rank) stops each rank's seed
+// as a single run stops, and no other seed starts; every rank then throws Interrupted. `--seeds N
+// --resume` continues: the seeds with a summary.json are kept, the others resumed (or started).
 #include <mpi.h>
 
 #include <string>
@@ -26,7 +30,8 @@ namespace geohybrid::apps
 /// Runs the N seeds, one after the other on each rank of `communicator`, and writes the averaged
 /// results (rank 0). Throws std::invalid_argument for n_seeds < 1 (before anything is written)
 /// and what the single runs throw (on every rank: a rank whose run failed gives its message, the
-/// others name the failed seeds); std::runtime_error if the runs' curves do not have the same rows.
-/// Collective.
-int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm communicator = MPI_COMM_WORLD);
+/// others name the failed seeds); std::runtime_error if the runs' curves do not have the same rows;
+/// Interrupted after a signal. With `resume`, as above. Collective.
+int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm communicator = MPI_COMM_WORLD,
+                      bool resume = false);
 } // namespace geohybrid::apps

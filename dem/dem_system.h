@@ -43,7 +43,10 @@ struct DemSettings
   Vec2 gravity = Vec2(0.0, -9.81);   ///< [m/s^2]
   double local_damping = 0.7;        ///< PFC local damping coefficient alpha [-]
   double time_step = 0.0;            ///< [s]; 0 = safety factor x critical time step
-  double time_step_safety = 0.8;     ///< fraction of the critical time step used when automatic
+  /// Fraction of the critical time step used when automatic: of the system as it is, set again
+  /// whenever a wall, a sheet, energy weights or a band's scaled inertia change it. 0.8 for the
+  /// pull-out, biaxial and calibrate commands; `geohybrid dem` has its own entry (default 0.5).
+  double time_step_safety = 0.8;
   double skin = 0.0;                 ///< Verlet skin [m]; 0 = 0.4 x the smallest radius
   int n_threads = 1;
   bool track_energy = true;          ///< accumulate dissipation every step (energy balance)
@@ -266,6 +269,9 @@ public:
   std::size_t n_touching_sheet_contacts() const;
 
 private:
+  /// The automatic step (DemSettings::time_step 0) set again to the safety factor times
+  /// critical_time_step() of the system as it is now; a step the user chose re-checked.
+  void update_time_step();
   void kick_and_drift();
   void move_walls();
   void rebuild_if_needed();

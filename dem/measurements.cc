@@ -1,5 +1,7 @@
 #include "measurements.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -155,5 +157,17 @@ double unbalanced_force_ratio(const DemSystem &system)
   if (n_bodies == 0 || n_contacts == 0 || contact == 0.0)
     return n_bodies == 0 ? 0.0 : 1.0;
   return (resultant / n_bodies) / (contact / n_contacts);
+}
+
+double energy_balance_error(const EnergyBudget &start, const EnergyBudget &now)
+{
+  double scale = 0.0;
+  for (const EnergyBudget *e : {&start, &now})
+    scale = std::max({scale, std::abs(e->kinetic), std::abs(e->gravitational), std::abs(e->elastic),
+                      std::abs(e->friction_dissipated), std::abs(e->viscous_dissipated),
+                      std::abs(e->local_damping_dissipated), std::abs(e->boundary_work), std::abs(e->sheet_kinetic),
+                      std::abs(e->sheet_elastic), std::abs(e->interface_friction_dissipated)});
+  const double change = now.total() - start.total();
+  return scale > 0.0 ? change / scale : change;
 }
 } // namespace geohybrid::dem

@@ -46,4 +46,11 @@ SheetFaceStresses sheet_face_stresses(const DemSystem &system, std::size_t sheet
 /// PFC's unbalanced-force ratio: mean |resultant force| over movable bodies divided by the mean
 /// contact force magnitude; tends to 0 at static equilibrium.
 double unbalanced_force_ratio(const DemSystem &system);
+
+/// The energy balance's error from `start` to `now`, relative: (now.total() - start.total()) over
+/// the largest magnitude of the budget's terms at either time (kinetic, gravitational, elastic,
+/// each dissipated term, the boundary work, the sheets' kinetic and elastic energies). Finite in
+/// any scene (without gravity, a relative figure over |gravitational| alone divided by zero); 0
+/// when every term is 0 (the change is then 0 too).
+double energy_balance_error(const EnergyBudget &start, const EnergyBudget &now);
 } // namespace geohybrid::dem

@@ -18,7 +18,9 @@ enum class WallControl
 struct WallServo
 {
   double target_stress = 0.0;  ///< compressive normal stress to hold [Pa]
-  double relaxation    = 0.5;  ///< fraction of the stress error removed per step (PFC's alpha)
+  /// Fraction of the stress error removed per step (PFC's alpha), against the contacts' force
+  /// change per unit speed over a step, N kn dt, plus their dashpots' c if the wall has some.
+  double relaxation    = 0.5;
   double max_speed     = 1.0;  ///< cap on the servo speed [m/s]
   /// Integral action: fraction of the accumulated error fed back per step. A purely
   /// proportional servo lags a wall that must keep moving (a dilating sample) by a constant

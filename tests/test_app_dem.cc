@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <iostream>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -165,6 +168,61 @@ TEST_F(DemCommand, CsvImpactIsScriptable)
   const auto p = geohybrid::dem::read_particle_csv(directory_ / "out" / "final_particles.csv", 2650.0, 0.5);
   EXPECT_NEAR(p.vx[0], -0.2, 2e-3);
   EXPECT_NEAR(p.vx[1], 0.2, 2e-3);
+}
+
+// Without gravity the energy balance is relative to the largest of the budget's terms (here the
+// pair's kinetic energy), not to |gravitational| = 0: a head-on impact with dashpots (e = 0.5)
+// reports a finite error in summary.json and in every row of the time series (it was 6e291).
+// At 0.02 of the critical step the balance closes to 1e-4 (EnergyBalance.* in test_dem_system.cc);
+// 1e-3 is the tolerance.
+TEST_F(DemCommand, EnergyBalanceWithoutGravityIsFinite)
+{
+  std::ofstream(directory_ / "pair.csv") << "x,y,radius,vx,vy,omega\n0.04,0.1,0.01,0.2,0,0\n0.0601,0.1,0.01,-0.2,0,0\n";
+  ASSERT_EQ(error_of(input("subsection Particles\n  set source = csv\n  set csv file = pair.csv\nend\n"
+                           "subsection Particle contact\n  set restitution coefficient = 0.5\nend\n"
+                           "subsection Simulation\n  set gravity = 0\n  set local damping coefficient = 0\n"
+                           "  set time step safety factor = 0.02\n  set history particles = 0, 1\nend\n")),
+            "");
+  const std::string summary = contents(directory_ / "out" / "summary.json");
+  const std::string key = "\"energy_balance_error_relative\": ";
+  const auto at = summary.find(key);
+  ASSERT_NE(at, std::string::npos) << summary;
+  ASSERT_NE(summary.compare(at + key.size(), 4, "null"), 0) << summary;
+  const double error = std::stod(summary.substr(at + key.size()));
+  std::cout << "energy balance without gravity: " << std::scientific << std::setprecision(3) << error << std::defaultfloat << std::endl;
+  EXPECT_LT(std::abs(error), 1e-3) << summary;
+  EXPECT_NE(summary.find("\"energy_balance_error_relative_definition\""), std::string::npos);
+  std::ifstream series(directory_ / "out" / "time_series.csv");
+  std::string line;
+  std::getline(series, line);
+  std::size_t rows = 0;
+  for (; std::getline(series, line); ++rows)
+    {
+      std::istringstream fields(line);
+      std::string field;
+      for (int column = 0; column < 9; ++column)
+        std::getline(fields, field, ',');
+      EXPECT_LT(std::abs(std::stod(field)), 1e-3) << line; // column 9: energy_balance_error
+    }
+  EXPECT_GE(rows, 5u);
+  // The pair did collide: the dashpots took energy.
+  const auto p = geohybrid::dem::read_particle_csv(directory_ / "out" / "final_particles.csv", 2650.0, 0.5);
+  EXPECT_LT(p.vx[1] - p.vx[0], 0.4 * 0.6);
+}
+
+// The automatic step is the safety factor times the critical step of the scene with its walls
+// (here stiffer than the grains), the one the run prints and the one a refused step is held to.
+TEST_F(DemCommand, AutomaticStepIsTheSafetyFactorOfTheCriticalStep)
+{
+  ASSERT_EQ(error_of(input("subsection Wall contact\n  set normal stiffness = 2e8\n  set shear stiffness = 1e8\nend\n"
+                           "subsection Simulation\n  set end time = 0.002\nend\n")),
+            "");
+  const std::string summary = contents(directory_ / "out" / "summary.json");
+  const auto value = [&](const std::string &key) {
+    const auto at = summary.find("\"" + key + "\": ");
+    return at == std::string::npos ? std::nan("") : std::stod(summary.substr(at + key.size() + 4));
+  };
+  EXPECT_NEAR(value("time_step_s") / value("critical_time_step_s"), 0.5, 1e-9) << summary;
 }
 
 // A run stopped part-way (end time 12.3 ms, off the output and snapshot intervals) and continued

@@ -2,6 +2,7 @@
 // exact columns, summary.json keys, the sheet's displacements and tension profiles), the soil
 // taken from a `geohybrid calibrate` fragment, and bad input refused naming the entry.
 #include "apps/pullout_command.h"
+#include "apps/pullout_output.h"
 #include "apps/pullout_seeds.h"
 #include "dem/checkpoint.h"
 #include "text_file.h"
@@ -133,6 +134,34 @@ TEST(PullOutCommand, WritesTheContract)
   const double clamp_work = forces.back()[12] - forces[1][12];
   EXPECT_GT(clamp_work, 0.0);
   EXPECT_NEAR(clamp_work, integral, 0.02 * integral);
+  fs::remove_all(d);
+}
+
+// A full disk (/dev/full: every write fails with ENOSPC) stops the run at the first row it cannot
+// write, with an error naming the file (the curve files are flushed at every point), instead of
+// leaving them empty or failing only at the end.
+TEST(PullOutCommand, FullDiskNamesTheFile)
+{
+  if (!fs::exists("/dev/full"))
+    GTEST_SKIP() << "no /dev/full on this system";
+  const fs::path d = test_directory();
+  for (const char *name : {"pullout_curve.csv", "sheet_tension.csv"})
+    {
+      fs::remove_all(d / name);
+      fs::create_symlink("/dev/full", d / name);
+      try
+        {
+          geohybrid::apps::PulloutOutput output(d, 0.5, {0.001});
+          output.add_point(0.0, 0.0, {{0.0, 0.0, 0.0}});
+          ADD_FAILURE() << "writing to a full " << name << " was not refused";
+        }
+      catch (const std::runtime_error &e)
+        {
+          EXPECT_NE(std::string(e.what()).find((d / name).string()), std::string::npos) << e.what();
+          EXPECT_NE(std::string(e.what()).find("disk full"), std::string::npos) << e.what();
+        }
+      fs::remove(d / name);
+    }
   fs::remove_all(d);
 }
 

@@ -1,0 +1,246 @@
+// SIGTERM and SIGINT stop `geohybrid pullout` and `geohybrid dem` cleanly (apps/interrupt.h). The
+// real program runs in a child process and gets a real signal from kill(2), so that the handler,
+// the loop's check, the exit status and the files on disk are those a user meets: the status of a
+// process the signal killed (143, 130), no summary.json, a checkpoint, every recorded row in the
+// curve files, and a --resume that ends where a run that never stopped ends, bit for bit.
+#include "text_file.h"
+#include "tiny_pullout_input.h"
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+extern char **environ;
+
+namespace fs = std::filesystem;
+using geohybrid::testing::lines_of;
+using geohybrid::testing::read_text;
+
+namespace
+{
+fs::path interrupt_test_directory()
+{
+  const fs::path d = fs::temp_directory_path() / ("geohybrid_test_app_interrupt_" +
+                                                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+/// `geohybrid ARGS...` started in a child process, its stdout and stderr in `log`. The child gets
+/// this process's environment without the MPI launcher's variables (this test program is an MPI
+/// process itself; the child is a fresh singleton).
+pid_t start_geohybrid(const std::vector<std::string> &arguments, const fs::path &log)
+{
+  std::vector<std::string> words{GEOHYBRID_EXECUTABLE};
+  words.insert(words.end(), arguments.begin(), arguments.end());
+  std::vector<char *> argv;
+  for (std::string &w : words)
+    argv.push_back(w.data());
+  argv.push_back(nullptr);
+  std::vector<std::string> variables;
+  for (char **v = environ; *v; ++v)
+    {
+      const std::string variable = *v;
+      bool launcher = false;
+      for (const char *prefix : {"OMPI_", "PMIX_", "OPAL_", "ORTE_", "PRTE_"})
+        launcher = launcher || variable.rfind(prefix, 0) == 0;
+      if (!launcher)
+        variables.push_back(variable);
+    }
+  std::vector<char *> envp;
+  for (std::string &v : variables)
+    envp.push_back(v.data());
+  envp.push_back(nullptr);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&files, STDOUT_FILENO, STDERR_FILENO);
+  pid_t pid = -1;
+  const int error = posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&files);
+  EXPECT_EQ(error, 0) << "cannot start " << argv[0] << ": " << std::strerror(error);
+  return error == 0 ? pid : -1;
+}
+
+/// The child's exit status (128 + the signal if a signal killed it), or -1.
+int wait_for(pid_t pid)
+{
+  int status = 0;
+  if (pid <= 0 || waitpid(pid, &status, 0) != pid)
+    return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+}
+
+int run_geohybrid(const std::vector<std::string> &arguments, const fs::path &log)
+{
+  return wait_for(start_geohybrid(arguments, log));
+}
+
+/// Waits until `ready` holds or the child has ended (false then), polling every millisecond.
+template <typename Ready>
+bool wait_while_running(pid_t pid, const Ready &ready)
+{
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (std::chrono::steady_clock::now() < give_up)
+    {
+      if (ready())
+        return true;
+      int status = 0;
+      if (waitpid(pid, &status, WNOHANG) == pid)
+        return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  return false;
+}
+
+std::size_t rows_of(const fs::path &csv)
+{
+  const std::size_t lines = lines_of(csv).size();
+  return lines > 0 ? lines - 1 : 0;
+}
+
+/// The text of `"key": value` in a summary.json, as written.
+std::string summary_text(const fs::path &file, const std::string &key)
+{
+  const std::string text = read_text(file), quoted = "\"" + key + "\": ";
+  const auto at = text.find(quoted);
+  if (at == std::string::npos)
+    return "";
+  const auto start = at + quoted.size();
+  return text.substr(start, text.find_first_of(",\n}", start) - start);
+}
+
+/// The tiny pull-out of tiny_pullout_input.h recorded every 0.05 mm over 2 mm (41 points, about
+/// 10,000 steps), its output in `out`.
+std::string write_pull_input(const fs::path &directory, const std::string &out)
+{
+  const std::string base = geohybrid::testing::write_tiny_pullout_input(directory);
+  const fs::path file = directory / (out + ".prm");
+  std::ofstream(file) << read_text(base) << "set output directory = " << (directory / out).string() << "\n"
+                      << "subsection Pull\n  set final displacement = 0.002\n  set record interval = 0.00005\n"
+                      << "  set tension profiles at = 0.0005, 0.002\nend\n"
+                      << "subsection Output\n  set field outputs at = 0.001\nend\n";
+  return file.string();
+}
+} // namespace
+
+// A SIGTERM after a few points of the curve: the pull stops at the end of that step, exits with
+// 143, writes its checkpoint and keeps every row recorded (the straight run's rows, as they were),
+// and no summary.json; --resume then finishes with the straight run's files, bit for bit, T_max
+// the same string. About 12 s of CPU: two fills of 400 clusters and two pulls of 2 mm.
+TEST(PullOutInterrupted, SigtermKeepsTheRowsAndResumesBitForBit)
+{
+  const fs::path d = interrupt_test_directory();
+  const std::string straight = write_pull_input(d, "straight"), stopped = write_pull_input(d, "stopped");
+  ASSERT_EQ(run_geohybrid({"pullout", straight}, d / "straight.log"), 0) << read_text(d / "straight.log");
+  const std::vector<std::string> expected = lines_of(d / "straight" / "pullout_curve.csv");
+  ASSERT_EQ(expected.size(), 1u + 41u);
+
+  const pid_t child = start_geohybrid({"pullout", stopped}, d / "stopped.log");
+  const fs::path curve = d / "stopped" / "pullout_curve.csv";
+  ASSERT_TRUE(wait_while_running(child, [&] { return rows_of(curve) >= 4; })) << read_text(d / "stopped.log");
+  const std::size_t rows_at_signal = rows_of(curve);
+  ASSERT_EQ(kill(child, SIGTERM), 0);
+  EXPECT_EQ(wait_for(child), 143) << read_text(d / "stopped.log");
+
+  const std::string said = read_text(d / "stopped.log");
+  EXPECT_NE(said.find("interrupted by SIGTERM at "), std::string::npos) << said;
+  EXPECT_NE(said.find("continue with: "), std::string::npos) << said;
+  EXPECT_NE(said.find(stopped + " --resume"), std::string::npos) << said;
+  EXPECT_FALSE(fs::exists(d / "stopped" / "summary.json"));
+  EXPECT_TRUE(fs::exists(d / "stopped" / "checkpoint.h5"));
+  EXPECT_FALSE(fs::exists(d / "stopped" / "checkpoint.h5.tmp"));
+  // Every row recorded before the signal is on disk, and each is the straight run's.
+  const std::vector<std::string> kept = lines_of(curve);
+  ASSERT_GE(kept.size(), 1u + rows_at_signal);
+  ASSERT_LT(kept.size(), expected.size()) << "the pull had finished before the signal";
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    EXPECT_EQ(kept[k], expected[k]) << "line " << k;
+  std::cout << "SIGTERM after " << rows_at_signal << " rows: stopped with " << kept.size() - 1 << " of "
+            << expected.size() - 1 << " rows written" << std::endl;
+
+  ASSERT_EQ(run_geohybrid({"pullout", stopped, "--resume"}, d / "resumed.log"), 0) << read_text(d / "resumed.log");
+  for (const char *file : {"pullout_curve.csv", "pullout_curve_sheet.csv", "sheet_displacements.csv",
+                           "sheet_tension.csv", "grain_displacements_u1mm.csv"})
+    EXPECT_TRUE(read_text(d / "stopped" / file) == read_text(d / "straight" / file)) << file;
+  const std::string T_max = summary_text(d / "straight" / "summary.json", "T_max_kN_per_m");
+  EXPECT_FALSE(T_max.empty());
+  EXPECT_EQ(summary_text(d / "stopped" / "summary.json", "T_max_kN_per_m"), T_max);
+  fs::remove_all(d);
+}
+
+// A SIGTERM while the tank is filling: nothing resumable exists yet; the run stops at once with
+// 143, says so, and leaves no checkpoint and no summary.json. About 1 s of CPU.
+TEST(PullOutInterrupted, SigtermWhileFillingStopsWithoutACheckpoint)
+{
+  const fs::path d = interrupt_test_directory();
+  const std::string input = write_pull_input(d, "out");
+  const pid_t child = start_geohybrid({"pullout", input}, d / "out.log");
+  ASSERT_TRUE(wait_while_running(child, [&] { return fs::exists(d / "out" / "parameters.prm"); }));
+  ASSERT_EQ(kill(child, SIGTERM), 0);
+  EXPECT_EQ(wait_for(child), 143) << read_text(d / "out.log");
+  const std::string said = read_text(d / "out.log");
+  EXPECT_NE(said.find("interrupted by SIGTERM while filling the tank: nothing to resume yet; run it again: "),
+            std::string::npos)
+    << said;
+  EXPECT_FALSE(fs::exists(d / "out" / "checkpoint.h5"));
+  EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
+  EXPECT_EQ(rows_of(d / "out" / "pullout_curve.csv"), 0u);
+  fs::remove_all(d);
+}
+
+// `geohybrid dem` and SIGINT (Ctrl-C): a deposition stopped after a few rows of its time series
+// exits with 130, with its checkpoint and those rows and without final_particles.csv or
+// summary.json; --resume ends with the straight run's time series and final packing, bit for bit.
+TEST(DemInterrupted, SigintKeepsTheRowsAndResumesBitForBit)
+{
+  const fs::path d = interrupt_test_directory();
+  const auto write_input = [&](const std::string &out) {
+    const fs::path file = d / (out + ".prm");
+    std::ofstream(file) << "set output directory = " << (d / out).string() << "\nset threads = 1\n"
+                        << "subsection Particles\n  set number of particles = 300\n  set minimum radius = 0.004\n"
+                        << "  set maximum radius = 0.005\nend\n"
+                        << "subsection Box\n  set width = 0.3\n  set height = 0.3\nend\n"
+                        << "subsection Particle contact\n  set restitution coefficient = 0.5\nend\n"
+                        << "subsection Simulation\n  set end time = 0.15\n  set output interval = 0.001\n"
+                        << "  set snapshot interval = 0.05\n  set history particles = 0, 7\nend\n";
+    return file.string();
+  };
+  const std::string straight = write_input("straight"), stopped = write_input("stopped");
+  ASSERT_EQ(run_geohybrid({"dem", straight}, d / "straight.log"), 0) << read_text(d / "straight.log");
+  const std::vector<std::string> expected = lines_of(d / "straight" / "time_series.csv");
+
+  const pid_t child = start_geohybrid({"dem", stopped}, d / "stopped.log");
+  const fs::path series = d / "stopped" / "time_series.csv";
+  ASSERT_TRUE(wait_while_running(child, [&] { return rows_of(series) >= 5; })) << read_text(d / "stopped.log");
+  ASSERT_EQ(kill(child, SIGINT), 0);
+  EXPECT_EQ(wait_for(child), 130) << read_text(d / "stopped.log");
+  const std::string said = read_text(d / "stopped.log");
+  EXPECT_NE(said.find("interrupted by SIGINT at t = "), std::string::npos) << said;
+  EXPECT_NE(said.find(stopped + " --resume"), std::string::npos) << said;
+  EXPECT_TRUE(fs::exists(d / "stopped" / "checkpoint.h5"));
+  EXPECT_FALSE(fs::exists(d / "stopped" / "summary.json"));
+  EXPECT_FALSE(fs::exists(d / "stopped" / "final_particles.csv"));
+  const std::vector<std::string> kept = lines_of(series);
+  ASSERT_LT(kept.size(), expected.size()) << "the run had finished before the signal";
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    EXPECT_EQ(kept[k], expected[k]) << "line " << k;
+
+  ASSERT_EQ(run_geohybrid({"dem", stopped, "--resume"}, d / "resumed.log"), 0) << read_text(d / "resumed.log");
+  for (const char *file : {"time_series.csv", "particle_history.csv", "final_particles.csv"})
+    EXPECT_TRUE(read_text(d / "stopped" / file) == read_text(d / "straight" / file)) << file;
+  fs::remove_all(d);
+}
