@@ -349,13 +349,18 @@ HeadTensionParts head_tension_parts(const DemSystem &system)
   return parts;
 }
 
+// Field by field: add() runs at every step of a pull.
 void HeadTensionParts::add(const HeadTensionParts &o)
 {
-  const auto a = as_array(), b = o.as_array();
-  std::array<double, n_terms> sum;
-  for (std::size_t k = 0; k < n_terms; ++k)
-    sum[k] = a[k] + b[k];
-  *this = from_array(sum);
+  reaction += o.reaction;
+  interface_friction += o.interface_friction;
+  interface_normal += o.interface_normal;
+  node_wall += o.node_wall;
+  inertia += o.inertia;
+  damping += o.damping;
+  normal_force += o.normal_force;
+  elastic_normal_force += o.elastic_normal_force;
+  tangential_force += o.tangential_force;
 }
 
 void HeadTensionParts::scale(double factor)
