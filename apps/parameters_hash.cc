@@ -2,7 +2,10 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include "pullout_command.h"
+
 #include <algorithm>
+#include <map>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -31,7 +34,10 @@ std::string trimmed(const std::string &s)
 }
 } // namespace
 
-std::string canonical_parameters(const dealii::ParameterHandler &prm, const std::vector<std::string> &excluded)
+namespace
+{
+/// The lines "Subsection/.../entry = value" of every entry of `prm`, in ParameterHandler's order.
+std::vector<std::pair<std::string, std::string>> resolved_entries(const dealii::ParameterHandler &prm)
 {
   // ShortPRM: the values without the documentation, so that rewording an entry's description
   // does not change the hash of every run. Its lines are "subsection NAME", "set NAME = VALUE"
@@ -40,7 +46,7 @@ std::string canonical_parameters(const dealii::ParameterHandler &prm, const std:
   prm.print_parameters(printed, dealii::ParameterHandler::OutputStyle::ShortPRM);
   std::istringstream lines(printed.str());
   std::vector<std::string> path;
-  std::string canonical;
+  std::vector<std::pair<std::string, std::string>> entries;
   for (std::string line; std::getline(lines, line);)
     {
       line = trimmed(line);
@@ -57,21 +63,41 @@ std::string canonical_parameters(const dealii::ParameterHandler &prm, const std:
           for (const std::string &subsection : path)
             entry += subsection + '/';
           entry += trimmed(line.substr(4, equals - 4));
-          if (std::find(excluded.begin(), excluded.end(), entry) == excluded.end())
-            canonical += entry + " = " + trimmed(line.substr(equals + 1)) + '\n';
+          entries.emplace_back(entry, trimmed(line.substr(equals + 1)));
         }
       else
         throw std::logic_error("canonical_parameters: unexpected line '" + line + "' in ParameterHandler's output");
     }
   if (!path.empty())
     throw std::logic_error("canonical_parameters: subsection '" + path.back() + "' not closed in ParameterHandler's output");
+  return entries;
+}
+} // namespace
+
+std::string canonical_parameters(const dealii::ParameterHandler &prm, const dealii::ParameterHandler &defaults,
+                                 const std::vector<std::string> &excluded)
+{
+  const auto declared = resolved_entries(defaults);
+  std::map<std::string, std::string> default_of(declared.begin(), declared.end());
+  std::string canonical = std::string(numbers_version) + '\n';
+  for (const auto &[entry, value] : resolved_entries(prm))
+    {
+      if (std::find(excluded.begin(), excluded.end(), entry) != excluded.end())
+        continue;
+      const auto d = default_of.find(entry);
+      if (d != default_of.end() && d->second == value)
+        continue; // at its declared default: an entry added later with its default leaves the hash
+      canonical += entry + " = " + value + '\n';
+    }
   return canonical;
 }
 
-std::string parameters_hash(const dealii::ParameterHandler &prm, const std::vector<std::string> &excluded)
+std::string parameters_hash(const dealii::ParameterHandler &prm, const dealii::ParameterHandler &defaults,
+                            const std::vector<std::string> &excluded)
 {
   char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a_64(canonical_parameters(prm, excluded))));
+  std::snprintf(hex, sizeof hex, "%016llx",
+                static_cast<unsigned long long>(fnv1a_64(canonical_parameters(prm, defaults, excluded))));
   return hex;
 }
 
@@ -83,6 +109,8 @@ const std::vector<std::string> &pullout_run_control_entries()
 
 std::string pullout_parameters_hash(const dealii::ParameterHandler &prm)
 {
-  return parameters_hash(prm, pullout_run_control_entries());
+  dealii::ParameterHandler defaults;
+  declare_pullout_parameters(defaults);
+  return parameters_hash(prm, defaults, pullout_run_control_entries());
 }
 } // namespace geohybrid::apps

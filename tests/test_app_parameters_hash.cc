@@ -77,7 +77,11 @@ TEST(ParametersHash, RunControlEntriesLeaveItPhysicsChangesIt)
   dealii::ParameterHandler prm;
   geohybrid::apps::declare_pullout_parameters(prm);
   prm.parse_input(base);
-  const std::string canonical = geohybrid::apps::canonical_parameters(prm, geohybrid::apps::pullout_run_control_entries());
+  dealii::ParameterHandler defaults;
+  geohybrid::apps::declare_pullout_parameters(defaults);
+  const std::string canonical =
+    geohybrid::apps::canonical_parameters(prm, defaults, geohybrid::apps::pullout_run_control_entries());
+  EXPECT_EQ(canonical.rfind(std::string(geohybrid::apps::numbers_version) + "\n", 0), 0u) << canonical;
   EXPECT_NE(canonical.find("\nFilling/seed = 3\n"), std::string::npos) << canonical;
   EXPECT_NE(canonical.find("\nSheet/Interface/normal stiffness = 1e7\n"), std::string::npos) << canonical;
   EXPECT_EQ(canonical.find("threads"), std::string::npos) << canonical;
@@ -85,6 +89,48 @@ TEST(ParametersHash, RunControlEntriesLeaveItPhysicsChangesIt)
   EXPECT_EQ(geohybrid::apps::pullout_parameters_hash(prm), hash);
   EXPECT_FALSE(fs::exists(d.path / "out"));
   EXPECT_FALSE(fs::exists(d.path / "elsewhere"));
+}
+
+// Only entries that differ from their defaults are hashed: an entry set to its default, or one
+// declared later with a default that keeps the numbers (here a made-up 'Pull/future entry'),
+// leaves the hash as it was, so that committed runs stay matched to their inputs.
+TEST(ParametersHash, EntriesAtTheirDefaultsLeaveIt)
+{
+  using geohybrid::apps::check_pullout_input;
+  const geohybrid::testing::TemporaryDirectory d("parameters_hash");
+  const std::string base = geohybrid::testing::write_tiny_pullout_input(d.path);
+  const std::string hash = check_pullout_input(base);
+  dealii::ParameterHandler defaults;
+  geohybrid::apps::declare_pullout_parameters(defaults);
+  const std::string mode_default = defaults.get("mode");
+  dealii::ParameterHandler resolved;
+  geohybrid::apps::declare_pullout_parameters(resolved);
+  resolved.parse_input(base);
+  ASSERT_EQ(resolved.get("mode"), mode_default); // the tiny input leaves it
+  EXPECT_EQ(check_pullout_input(
+              parameters_hash_test::input_with(d.path, "mode_default", base, "set mode = " + mode_default + "\n")),
+            hash);
+  // The same input with one more entry in both the declarations and the defaults.
+  const auto with_future_entry = [](dealii::ParameterHandler &prm) {
+    geohybrid::apps::declare_pullout_parameters(prm);
+    prm.enter_subsection("Pull");
+    prm.declare_entry("future entry", "0.5", dealii::Patterns::Double());
+    prm.leave_subsection();
+  };
+  dealii::ParameterHandler later, later_defaults;
+  with_future_entry(later);
+  with_future_entry(later_defaults);
+  later.parse_input(base);
+  const auto control = geohybrid::apps::pullout_run_control_entries();
+  EXPECT_EQ(geohybrid::apps::parameters_hash(later, later_defaults, control), hash);
+  later.enter_subsection("Pull");
+  later.set("future entry", "0.25");
+  later.leave_subsection();
+  EXPECT_NE(geohybrid::apps::parameters_hash(later, later_defaults, control), hash);
+  // Another value changes it (the tiny input pulls at 0.01 m/s).
+  EXPECT_NE(check_pullout_input(
+              parameters_hash_test::input_with(d.path, "rate", base, "subsection Pull\n  set rate = 0.0123\nend\n")),
+            hash);
 }
 
 // The input is refused as the run refuses it, by name, before anything is written.
