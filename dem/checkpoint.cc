@@ -843,6 +843,18 @@ void put_command(hid_t file, const CommandState &c, const std::string &where)
   }
   hdf5::write_string_attribute(g.get(), "real_keys", joined_keys(real_keys), where);
   hdf5::write_string_attribute(g.get(), "count_keys", joined_keys(count_keys), where);
+  if (c.texts.empty())
+    return; // the layout of the files written before texts existed
+  std::vector<std::string> text_keys;
+  {
+    Handle texts = hdf5::create_group(g.get(), "texts", where);
+    for (const auto &[key, text] : c.texts)
+      {
+        hdf5::write_string_attribute(texts.get(), key.c_str(), text, where);
+        text_keys.push_back(key);
+      }
+  }
+  hdf5::write_string_attribute(g.get(), "text_keys", joined_keys(text_keys), where);
 }
 
 CommandState get_command(hid_t file, const std::string &where)
@@ -868,6 +880,12 @@ CommandState get_command(hid_t file, const std::string &where)
         c.counts[key].assign(v.begin(), v.end());
       }
   }
+  if (H5Aexists(g.get(), "text_keys") > 0)
+    {
+      Handle texts = hdf5::open_group(g.get(), "texts", where);
+      for (const std::string &key : split_keys(hdf5::read_string_attribute(g.get(), "text_keys", where)))
+        c.texts[key] = hdf5::read_string_attribute(texts.get(), key.c_str(), where);
+    }
   return c;
 }
 
@@ -905,7 +923,8 @@ void write_checkpoint_file(const DemSystemState &state, const CommandState *comm
   sync_to_disk(directory.empty() ? std::filesystem::path(".") : directory, false, where);
 }
 
-DemSystemState read_checkpoint_file(const std::filesystem::path &file, CommandState *command)
+/// With `state` null, only the command's state is read (the file checked as for the whole).
+void read_checkpoint_file(const std::filesystem::path &file, DemSystemState *state, CommandState *command)
 {
   const std::string where = describe(file);
   std::error_code error;
@@ -928,11 +947,11 @@ DemSystemState read_checkpoint_file(const std::filesystem::path &file, CommandSt
   if (version < 1 || version > checkpoint_format_version)
     fail(where, "has checkpoint format version " + std::to_string(version) + "; this program reads versions 1 to " +
                   std::to_string(checkpoint_format_version));
-  DemSystemState state = get_everything(h5.get(), version, where);
+  if (state)
+    *state = get_everything(h5.get(), version, where);
   if (command)
     *command = get_command(h5.get(), where);
   h5.close(where, "closing the file");
-  return state;
 }
 } // namespace
 
@@ -946,11 +965,25 @@ void write_checkpoint(const DemSystemState &state, const CommandState &command, 
   write_checkpoint_file(state, &command, file);
 }
 
-DemSystemState read_checkpoint(const std::filesystem::path &file) { return read_checkpoint_file(file, nullptr); }
+DemSystemState read_checkpoint(const std::filesystem::path &file)
+{
+  DemSystemState state;
+  read_checkpoint_file(file, &state, nullptr);
+  return state;
+}
 
 DemSystemState read_checkpoint(const std::filesystem::path &file, CommandState &command)
 {
-  return read_checkpoint_file(file, &command);
+  DemSystemState state;
+  read_checkpoint_file(file, &state, &command);
+  return state;
+}
+
+CommandState read_checkpoint_command(const std::filesystem::path &file)
+{
+  CommandState command;
+  read_checkpoint_file(file, nullptr, &command);
+  return command;
 }
 
 namespace

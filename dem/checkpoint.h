@@ -42,7 +42,8 @@
 //   /command          (optional, any version) what a command keeps beside the DEM state to go on
 //                     with its own work (CommandState): attribute name; datasets reals/<key>
 //                     (double) and counts/<key> (uint64); attributes real_keys, count_keys (the
-//                     keys, one a line)
+//                     keys, one a line); optionally group texts with one string attribute per
+//                     key and attribute text_keys (files written before it have none)
 #include "dem_system.h"
 
 #include <cstdint>
@@ -64,6 +65,8 @@ struct CommandState
   std::string name;
   std::map<std::string, std::vector<double>> reals;
   std::map<std::string, std::vector<std::uint64_t>> counts;
+  /// Short texts (each under 64 KB), such as the input that made the run.
+  std::map<std::string, std::string> texts;
 
   /// The array under `key`; throws std::runtime_error naming the key if there is none or if it
   /// does not hold `size` values (size 0: any).
@@ -85,4 +88,7 @@ void write_checkpoint(const DemSystemState &state, const CommandState &command, 
 DemSystemState read_checkpoint(const std::filesystem::path &file);
 /// The same, and the command's state into `command` (its name empty if the file has none).
 DemSystemState read_checkpoint(const std::filesystem::path &file, CommandState &command);
+/// The command's state alone (its name empty if the file has none), checked as read_checkpoint()
+/// checks the file, without reading the DEM state: to look at a checkpoint before using it.
+CommandState read_checkpoint_command(const std::filesystem::path &file);
 } // namespace geohybrid::dem

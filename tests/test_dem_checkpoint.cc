@@ -314,6 +314,29 @@ TEST(Checkpoint, RoundTripIsExact)
   EXPECT_EQ(read_checkpoint(file).time, 42.0);
 }
 
+// A command's texts (the input of its run) round-trip exactly and are read without the DEM state;
+// a file written without texts (as before they existed) reads with none.
+TEST(Checkpoint, CommandTextsRoundTripAndOlderFilesHaveNone)
+{
+  TemporaryDirectory directory;
+  const fs::path file = directory.path / "state.h5";
+  DemSystem system = deposition();
+  CommandState command;
+  command.name = "pullout";
+  command.reals["pull"] = {1.0, 2.0};
+  command.texts["input"] = "geohybrid numbers 1\nSoil/Particle contact/normal stiffness = 1e7\nTank/length = 0.16\n";
+  write_checkpoint(system.export_state(), command, file);
+  const CommandState back = read_checkpoint_command(file);
+  EXPECT_EQ(back.name, "pullout");
+  EXPECT_EQ(back.reals.at("pull"), command.reals.at("pull"));
+  ASSERT_EQ(back.texts.size(), 1u);
+  EXPECT_EQ(back.texts.at("input"), command.texts.at("input"));
+  command.texts.clear();
+  write_checkpoint(system.export_state(), command, file);
+  EXPECT_TRUE(read_checkpoint_command(file).texts.empty());
+  EXPECT_EQ(read_checkpoint_command(file).reals.at("pull"), command.reals.at("pull"));
+}
+
 TEST(Checkpoint, MissingFileNamed)
 {
   TemporaryDirectory directory;
