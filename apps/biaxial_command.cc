@@ -449,7 +449,7 @@ int run_biaxial_command(const std::string &input_file, bool resume)
       throw std::runtime_error(where + ": " + e.what());
     }
 
-  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
+  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"), false);
   write_resolved_parameters(prm, out);
   const auto start = std::chrono::steady_clock::now();
   const std::vector<dem::BiaxialCurve> curves = run_biaxial_campaign(campaign, true);

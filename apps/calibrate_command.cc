@@ -271,7 +271,7 @@ int run_calibrate_command(const std::string &input_file, bool resume)
     throw std::invalid_argument(where + ": 'Particle contact/shear stiffness' must be positive for a calibration "
                                 "(it is the starting ks/kn)");
 
-  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
+  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"), false);
   // A fragment from an earlier run must not pass for the result of this one.
   std::filesystem::remove(out / input.fragment_file);
   write_resolved_parameters(prm, out);

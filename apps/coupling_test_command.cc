@@ -358,7 +358,7 @@ int run_coupling_test_command(const std::string &input_file, bool resume)
   const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // ---- the results; summary.json last ----
-  const std::filesystem::path out = prepare_output_directory(in.output_directory);
+  const std::filesystem::path out = prepare_output_directory(in.output_directory, false);
   write_resolved_parameters(prm, out);
   write_energy_history(out / "energy_history.csv", f.energy.history);
   write_wave_history(out / "wave_reflection.csv", f.wave.history);

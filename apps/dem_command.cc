@@ -12,6 +12,7 @@
 #include "contact_parameters.h"
 #include "interrupt.h"
 #include "plot.h"
+#include "resume_check.h"
 #include "run_directory.h"
 
 #include "dem/checkpoint.h"
@@ -258,14 +259,19 @@ int run_dem_command(const std::string &input_file, bool resume)
   if (out.empty())
     throw std::invalid_argument(where + ": parameter 'output directory' is empty");
   const std::filesystem::path checkpoint_file = out / "checkpoint.h5";
+  ParameterHandler defaults;
+  declare_dem_parameters(defaults);
   if (resume)
     {
       if (!std::filesystem::exists(checkpoint_file))
         throw std::runtime_error("cannot resume: there is no checkpoint '" + checkpoint_file.string() +
                                  "' (runs write one every 'Simulation/checkpoint interval' seconds and at their end)");
+      dem::CommandState saved;
+      dem::DemSystemState state = dem::read_checkpoint(checkpoint_file, saved);
+      check_resumed_input(saved, prm, defaults, dem_resume_entries(), checkpoint_file, where, "geohybrid dem");
       try
         {
-          system.restore_state(dem::read_checkpoint(checkpoint_file));
+          system.restore_state(std::move(state));
         }
       catch (const std::invalid_argument &e)
         {
@@ -298,7 +304,7 @@ int run_dem_command(const std::string &input_file, bool resume)
   };
 
   // ---- run ----
-  prepare_output_directory(out.string());
+  prepare_output_directory(out.string(), resume);
   write_resolved_parameters(prm, out);
   if (!resume)
     std::filesystem::remove(checkpoint_file); // a stale one from an earlier run must not be resumed
@@ -345,7 +351,11 @@ int run_dem_command(const std::string &input_file, bool resume)
   };
   // The rows up to the checkpoint are in the files already (write_rows flushes them), so that
   // a resumed run finds them.
-  const auto save_checkpoint = [&] { dem::write_checkpoint(system.export_state(), checkpoint_file); };
+  // The input beside the state: a --resume with other physics is refused (resume_check.h).
+  dem::CommandState input;
+  input.name = "dem";
+  store_input(prm, defaults, input);
+  const auto save_checkpoint = [&] { dem::write_checkpoint(system.export_state(), input, checkpoint_file); };
 
   const auto wall_start = std::chrono::steady_clock::now();
   std::cout << "geohybrid dem: " << system.particles().n_bodies() << " particles ("

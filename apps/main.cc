@@ -21,12 +21,14 @@
 #include "apps/coupling_test_command.h"
 #include "apps/dem_command.h"
 #include "apps/interrupt.h"
+#include "apps/output_guard.h"
 #include "apps/pullout_command.h"
 #include "apps/pullout_seeds.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <iostream>
@@ -61,7 +63,8 @@ const std::map<std::string, Command> &commands()
   return table;
 }
 
-/// This invocation as a shell command (arguments quoted where needed), with --resume or without,
+/// This invocation as a shell command (arguments quoted where needed), with --resume (and then
+/// without --overwrite) or without (and then with --overwrite),
 /// under `mpirun -np P` if it runs on P > 1 ranks.
 std::string command_line(int argc, char **argv, bool resume)
 {
@@ -78,15 +81,17 @@ std::string command_line(int argc, char **argv, bool resume)
   std::string line = n_ranks > 1 ? "mpirun -np " + std::to_string(n_ranks) + " " : "";
   line += quoted(argv[0]);
   for (int k = 1; k < argc; ++k)
-    if (std::strcmp(argv[k], "--resume"))
+    if (std::strcmp(argv[k], "--resume") && (!resume || std::strcmp(argv[k], "--overwrite")))
       line += " " + quoted(argv[k]);
-  return resume ? line + " --resume" : line;
+  // Run again from the start, the directory holds this run's files: --overwrite replaces them.
+  const bool has_overwrite = std::find_if(argv + 1, argv + argc, [](const char *a) { return !std::strcmp(a, "--overwrite"); }) != argv + argc;
+  return resume ? line + " --resume" : has_overwrite ? line : line + " --overwrite";
 }
 
 void print_usage(std::ostream &out)
 {
   out << "geohybrid: 2D DEM of soil coupled with a deal.II continuum, for geosynthetic anchorages\n\n"
-         "usage: geohybrid COMMAND FILE.prm|FILE.json [--resume]\n"
+         "usage: geohybrid COMMAND FILE.prm|FILE.json [--resume | --overwrite]\n"
          "       geohybrid COMMAND --print-parameters   (every parameter, default, unit and meaning)\n"
          "       geohybrid pullout FILE.prm --seeds N [--resume]   (N fills, seeds s, s+1, ...; the averaged curve; under mpirun spread over the ranks)\n"
          "       geohybrid pullout FILE.prm --print-parameters-hash   (FILE checked as a run would, nothing\n"
@@ -96,7 +101,14 @@ void print_usage(std::ostream &out)
          "--resume continues the run of FILE from its last checkpoint, OUTPUT/checkpoint.h5\n"
          "(written every 'Simulation/checkpoint interval' seconds, at the end, and when SIGINT or\n"
          "SIGTERM stops a dem or pullout run: Ctrl-C); the end time may have been raised meanwhile.\n"
-         "With --seeds N it keeps the seeds that finished and continues the others.\n\ncommands:\n";
+         "With --seeds N it keeps the seeds that finished and continues the others. The input must be\n"
+         "the checkpointed run's: only the run-control entries may change ('output directory',\n"
+         "'threads', 'checkpoint interval', 'stop after steps'; for dem also 'Simulation/end time',\n"
+         "'output interval' and 'snapshot interval'; while the pull has not started, as with\n"
+         "filled_tank.h5 copied as checkpoint.h5, also 'Pull/rate', 'Pull/grain local damping' and\n"
+         "'Pull/sheet local damping'); any other difference is refused, naming it.\n"
+         "A run into an output directory that holds another run's files is refused; --overwrite\n"
+         "removes those files first (only the files geohybrid writes: yours stay).\n\ncommands:\n";
   for (const auto &[name, command] : commands())
     out << "  " << name << std::string(15 - std::min<std::size_t>(14, name.size()), ' ') << command.summary << '\n';
 }
@@ -132,13 +144,15 @@ int main(int argc, char **argv)
     }
   // The arguments after the command: --print-parameters alone, or one input file and --resume.
   std::string input_file;
-  bool resume = false, print_parameters = false, print_hash = false;
+  bool resume = false, overwrite = false, print_parameters = false, print_hash = false;
   int n_seeds = 0; // pullout --seeds N
   for (int k = 2; k < argc; ++k)
     {
       const std::string argument = argv[k];
       if (argument == "--resume" && !resume)
         resume = true;
+      else if (argument == "--overwrite" && !overwrite)
+        overwrite = true;
       else if (argument == "--seeds" && !std::strcmp(argv[1], "pullout") && n_seeds == 0)
         {
           char *end = nullptr;
@@ -164,13 +178,20 @@ int main(int argc, char **argv)
           return 2;
         }
     }
-  if (print_parameters ? (resume || n_seeds > 0 || print_hash || !input_file.empty())
-                       : (input_file.empty() || (print_hash && (resume || n_seeds > 0))))
+  if (print_parameters ? (resume || overwrite || n_seeds > 0 || print_hash || !input_file.empty())
+                       : (input_file.empty() || (print_hash && (resume || overwrite || n_seeds > 0))))
     {
-      std::cerr << "geohybrid " << argv[1] << ": expected one input file (optionally followed by --resume, or for "
-                << "pullout by --seeds N or --print-parameters-hash) or --print-parameters\n";
+      std::cerr << "geohybrid " << argv[1] << ": expected one input file (optionally followed by --resume or "
+                << "--overwrite, or for pullout by --seeds N or --print-parameters-hash) or --print-parameters\n";
       return 2;
     }
+  if (resume && overwrite)
+    {
+      std::cerr << "geohybrid " << argv[1] << ": --resume continues the run in the output directory, --overwrite "
+                << "removes it: give one of them\n";
+      return 2;
+    }
+  geohybrid::apps::set_overwrite_output(overwrite);
   try
     {
       if (print_parameters)

@@ -36,6 +36,7 @@
 #include "pullout_input.h"
 #include "pullout_forces_output.h"
 #include "pullout_output.h"
+#include "resume_check.h"
 #include "run_directory.h"
 
 #include <deal.II/base/mpi.h>
@@ -330,7 +331,9 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   if (check_only)
     return 0;
 
-  const std::filesystem::path out = prepare_output_directory(prm.get("output directory"));
+  const std::filesystem::path out = prm.get("output directory");
+  if (out.empty())
+    throw std::invalid_argument(where + ": parameter 'output directory' is empty");
   const std::filesystem::path checkpoint_file = out / "checkpoint.h5";
   const auto start_time = std::chrono::steady_clock::now();
   const auto seconds = [&] {
@@ -347,6 +350,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   double earlier_wall_time = 0.0; // of the runs before this one, when resuming
   if (resume && std::filesystem::exists(checkpoint_file))
     {
+      check_pullout_checkpoint(checkpoint_file, prm, where); // before its state is used: it may not even fit
       try
         {
           dem::DemSystemState state = dem::read_checkpoint(checkpoint_file, saved);
@@ -359,7 +363,8 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
         }
       earlier_wall_time = saved.real("wall_time_s", 1)[0];
     }
-  else
+  prepare_output_directory(out.string(), resume);
+  if (!filled)
     {
       if (resume)
         std::cout << "geohybrid pullout: no checkpoint in " << out.string()
@@ -392,6 +397,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
       dem::store_sheet_level_stress(before, saved);
       saved.reals["fill_wall_time_s"] = {fill_time};
     }
+  store_pullout_input(prm, saved); // this run's: what a later --resume is checked against
   dem::PullOutTank &tank = *filled;
   dem::DemSystem &system = tank.tank.system;
   const double actual_cover = g.fill_height - tank.sheet_level;

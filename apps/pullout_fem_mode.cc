@@ -287,7 +287,7 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
 
   std::optional<PulloutOutput> output;
   on_rank_zero(comm, [&] {
-    prepare_output_directory(out.string());
+    prepare_output_directory(out.string(), false);
     write_resolved_parameters(prm, out);
     if (!c.problem.snapshot_directory.empty())
       std::filesystem::create_directories(c.problem.snapshot_directory);

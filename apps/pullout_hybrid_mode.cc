@@ -4,6 +4,7 @@
 #include "apps/pullout_fem_mode.h"
 #include "apps/parameters_hash.h"
 #include "apps/pullout_output.h"
+#include "apps/resume_check.h"
 #include "apps/run_directory.h"
 
 #include "coupling/hybrid_checkpoint.h"
@@ -297,11 +298,19 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   if (check_only)
     return 0;
 
-  const std::filesystem::path out = prepare_output_directory(out_name);
+  const std::filesystem::path out = out_name;
   // Checkpoints: the filled box (the particles only, written once: the set-up after it is
   // repeated on resuming, deterministic and short), then, during the pull, the particles' and the
-  // continuum's states with the pull's progress and the rows recorded.
+  // continuum's states with the pull's progress and the rows recorded. Each keeps the input, and
+  // a resume with another is refused before a file is written (resume_check.h).
   const std::filesystem::path box_file = out / "filled_box.h5", checkpoint_file = out / "checkpoint.h5";
+  if (resume)
+    for (const auto &file : {box_file, checkpoint_file})
+      if (std::filesystem::exists(file))
+        check_pullout_checkpoint(file, prm, where);
+  prepare_output_directory(out_name, resume);
+  dem::CommandState input;
+  store_pullout_input(prm, input);
   if (!resume)
     for (const auto &stale : {box_file, checkpoint_file})
       std::filesystem::remove(stale); // never resume a stale one
@@ -350,6 +359,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
       dem::CommandState c;
       dem::store_pullout_tank(*filled, c);
       c.reals["fill_wall_time_s"] = {fill_time};
+      c.texts = input.texts;
       if (checkpoint_interval > 0.0)
         dem::write_checkpoint(filled->tank.system.export_state(), c, box_file);
       else
@@ -446,6 +456,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
     diagnostics.store(c);
     coupling::store_continuum_state(hybrid->continuum_state(), c);
     c.counts["hybrid_pull_steps"] = {hybrid->pull_steps()};
+    c.texts = input.texts;
     dem::write_checkpoint(system.export_state(), c, checkpoint_file);
   };
   if (!resumed)

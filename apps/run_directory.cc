@@ -1,5 +1,7 @@
 #include "run_directory.h"
 
+#include "output_guard.h"
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
@@ -85,7 +87,10 @@ void parse_input_file(dealii::ParameterHandler &prm, const std::string &input_fi
     }
 }
 
-void set_parameter(dealii::ParameterHandler &prm, const std::string &path, const std::string &value)
+namespace
+{
+/// "Subsection/.../entry" split at its slashes.
+std::vector<std::string> path_parts(const std::string &path)
 {
   std::vector<std::string> parts;
   for (std::size_t start = 0;;)
@@ -96,6 +101,13 @@ void set_parameter(dealii::ParameterHandler &prm, const std::string &path, const
         break;
       start = slash + 1;
     }
+  return parts;
+}
+} // namespace
+
+void set_parameter(dealii::ParameterHandler &prm, const std::string &path, const std::string &value)
+{
+  const std::vector<std::string> parts = path_parts(path);
   for (std::size_t k = 0; k + 1 < parts.size(); ++k)
     prm.enter_subsection(parts[k]);
   prm.set(parts.back(), value);
@@ -103,11 +115,19 @@ void set_parameter(dealii::ParameterHandler &prm, const std::string &path, const
     prm.leave_subsection();
 }
 
-std::filesystem::path prepare_output_directory(const std::string &directory)
+std::string get_parameter(const dealii::ParameterHandler &prm, const std::string &path)
+{
+  const std::vector<std::string> parts = path_parts(path);
+  std::vector<std::string> subsections(parts.begin(), parts.end() - 1);
+  return prm.get(subsections, parts.back());
+}
+
+std::filesystem::path prepare_output_directory(const std::string &directory, bool resume)
 {
   if (directory.empty())
     throw std::invalid_argument("parameter 'output directory' is empty");
   const std::filesystem::path path(directory);
+  claim_output_directory(path, resume);
   std::error_code error;
   std::filesystem::create_directories(path, error);
   if (error)

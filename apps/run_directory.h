@@ -30,8 +30,13 @@ void parse_input_file(dealii::ParameterHandler &prm, const std::string &input_fi
 /// input file had said so (the entry's pattern is checked by ParameterHandler).
 void set_parameter(dealii::ParameterHandler &prm, const std::string &path, const std::string &value);
 
-/// Creates the directory (and parents), removing a stale summary.json from an earlier run.
-std::filesystem::path prepare_output_directory(const std::string &directory);
+/// The value of the entry at `path`, as set_parameter() names it; throws if it is not declared.
+std::string get_parameter(const dealii::ParameterHandler &prm, const std::string &path);
+
+/// Creates the directory (and parents) for a run, or for a run that continues the one there
+/// (`resume`: its files are kept, but a stale summary.json is removed). A directory that holds
+/// another run's files is refused, or cleared with --overwrite (apps/output_guard.h).
+std::filesystem::path prepare_output_directory(const std::string &directory, bool resume);
 
 /// Writes every parameter, resolved, as DIRECTORY/parameters.prm.
 void write_resolved_parameters(const dealii::ParameterHandler &prm, const std::filesystem::path &directory);

@@ -1,6 +1,7 @@
 // `geohybrid biaxial` end to end on a tiny sample: the output contract (summary.json keys, one
 // CSV per confinement) and bad input refused with the parameter named, before any output.
 #include "apps/biaxial_command.h"
+#include "apps/output_guard.h"
 #include "apps/pullout_fem_mode.h"
 #include "dem/biaxial_test.h"
 #include "text_file.h"
@@ -138,13 +139,17 @@ TEST(BiaxialCommand, SampleFileIsMadeOnceAndReused)
   EXPECT_GT(first_20.size(), 500u);
   const auto written = fs::last_write_time(sample);
 
-  ASSERT_EQ(error_of(write_input(d, with_file + "set threads = 2\n")), "");
+  geohybrid::apps::set_overwrite_output(true); // the second run replaces the first one's files
+  const std::string second = error_of(write_input(d, with_file + "set threads = 2\n"));
+  geohybrid::apps::set_overwrite_output(false);
+  ASSERT_EQ(second, "");
   EXPECT_EQ(fs::last_write_time(sample), written); // read, not made again
   EXPECT_EQ(read_text(d / "out" / "biaxial_20kPa.csv"), first_20);
   EXPECT_EQ(read_text(d / "out" / "biaxial_50kPa.csv"), first_50);
   EXPECT_NE(read_text(d / "out" / "summary.json").find(sample.string()), std::string::npos);
 
   fs::remove(d / "out" / "summary.json");
+  // Refused for its sample before the directory is looked at.
   const std::string message =
     error_of(write_input(d, "subsection Sample\n  set seed = 2\n  set sample file = " + sample.string() + "\nend\n"));
   EXPECT_NE(message.find("input file"), std::string::npos) << message;

@@ -1,6 +1,7 @@
 // The `geohybrid dem` command end to end: a tiny scene runs and writes its results; bad input is
 // refused before anything is written, with a message naming the file and the parameter.
 #include "apps/dem_command.h"
+#include "apps/output_guard.h"
 #include "dem/packing.h"
 
 #include <gtest/gtest.h>
@@ -263,8 +264,10 @@ TEST_F(DemCommand, ResumeWithoutCheckpointRefused)
   // 'checkpoint interval = 0' writes none, and removes a stale one from an earlier run.
   ASSERT_EQ(error_of(input("subsection Simulation\n  set end time = 0.002\nend\n")), "");
   ASSERT_TRUE(fs::exists(directory_ / "out" / "checkpoint.h5"));
+  geohybrid::apps::set_overwrite_output(true); // a new run where the last one was
   ASSERT_EQ(error_of(input("subsection Simulation\n  set end time = 0.002\n  set checkpoint interval = 0\nend\n")),
             "");
+  geohybrid::apps::set_overwrite_output(false);
   EXPECT_FALSE(fs::exists(directory_ / "out" / "checkpoint.h5"));
   message = error_of(input(""), true);
   EXPECT_NE(message.find("checkpoint.h5"), std::string::npos) << message;
@@ -276,4 +279,54 @@ TEST_F(DemCommand, ResumeBeforeCheckpointTimeRefused)
   const std::string message = error_of(input("subsection Simulation\n  set end time = 0.002\nend\n"), true);
   EXPECT_NE(message.find("end time"), std::string::npos) << message;
   EXPECT_NE(message.find("checkpoint"), std::string::npos) << message;
+}
+
+// A resume with other physics (more particles, another stiffness) is refused before anything is
+// written, naming the entries, both values and the checkpoint; the run-control entries (threads,
+// the end time, the output intervals) may change. Its checkpoint keeps the input for that.
+TEST_F(DemCommand, ResumeWithOtherPhysicsRefused)
+{
+  ASSERT_EQ(error_of(input("subsection Simulation\n  set end time = 0.004\nend\n")), "");
+  const std::string parameters = contents(directory_ / "out" / "parameters.prm");
+  const std::string message =
+    error_of(input("subsection Particles\n  set number of particles = 70\nend\n"
+                   "subsection Wall contact\n  set normal stiffness = 2e8\nend\n", "changed.prm"),
+             true);
+  EXPECT_NE(message.find("cannot resume from '" + (directory_ / "out" / "checkpoint.h5").string() + "'"),
+            std::string::npos)
+    << message;
+  EXPECT_NE(message.find("changed.prm"), std::string::npos) << message;
+  EXPECT_NE(message.find("'Particles/number of particles' = '70' (checkpoint: '60')"), std::string::npos) << message;
+  EXPECT_NE(message.find("'Wall contact/normal stiffness' = '2e8' (checkpoint: "), std::string::npos) << message;
+  EXPECT_EQ(contents(directory_ / "out" / "parameters.prm"), parameters); // still the run's own
+  ASSERT_EQ(error_of(input("set threads = 2\nsubsection Simulation\n  set end time = 0.006\n"
+                           "  set output interval = 0.002\n  set checkpoint interval = 100\nend\n",
+                           "further.prm"),
+                     true),
+            "");
+  EXPECT_NE(contents(directory_ / "out" / "summary.json").find("\"resumed_from_time_s\": 0.004"), std::string::npos);
+}
+
+// A second run into the directory of a first is refused, naming it; with --overwrite it removes
+// the first run's files first (its particle_history.csv, which the second does not write, is
+// gone) and leaves the user's own.
+TEST_F(DemCommand, AnotherRunsDirectoryRefusedUnlessOverwrite)
+{
+  ASSERT_EQ(error_of(input("subsection Simulation\n  set end time = 0.002\nend\n")), "");
+  ASSERT_TRUE(fs::exists(directory_ / "out" / "particle_history.csv"));
+  std::ofstream(directory_ / "out" / "notes.txt") << "the first run\n";
+  const std::string second = input("subsection Simulation\n  set end time = 0.002\n  set history particles =\nend\n",
+                                   "second.prm");
+  const std::string message = error_of(second);
+  EXPECT_NE(message.find("output directory '" + (directory_ / "out").string() + "' holds the files of another run"),
+            std::string::npos)
+    << message;
+  EXPECT_NE(message.find("--overwrite"), std::string::npos) << message;
+  geohybrid::apps::set_overwrite_output(true);
+  const std::string overwritten = error_of(second);
+  geohybrid::apps::set_overwrite_output(false);
+  ASSERT_EQ(overwritten, "");
+  EXPECT_TRUE(fs::exists(directory_ / "out" / "summary.json"));
+  EXPECT_FALSE(fs::exists(directory_ / "out" / "particle_history.csv"));
+  EXPECT_EQ(contents(directory_ / "out" / "notes.txt"), "the first run\n");
 }

@@ -196,6 +196,8 @@ TEST(PullOutInterrupted, SigtermWhileFillingStopsWithoutACheckpoint)
   EXPECT_NE(said.find("interrupted by SIGTERM while filling the tank: nothing to resume yet; run it again: "),
             std::string::npos)
     << said;
+  // Its directory holds this run's files: the command that starts it again replaces them.
+  EXPECT_NE(said.find(input + " --overwrite"), std::string::npos) << said;
   EXPECT_FALSE(fs::exists(d / "out" / "checkpoint.h5"));
   EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
   EXPECT_EQ(rows_of(d / "out" / "pullout_curve.csv"), 0u);

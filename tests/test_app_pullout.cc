@@ -4,6 +4,7 @@
 #include "apps/pullout_command.h"
 #include "apps/pullout_output.h"
 #include "apps/pullout_seeds.h"
+#include "apps/resume_check.h"
 #include "dem/checkpoint.h"
 #include "text_file.h"
 #include "tiny_pullout_input.h"
@@ -451,5 +452,55 @@ TEST(PullOutCommand, ResumesAStoppedPullBitForBit)
   ASSERT_EQ(a.pairs.size(), b.pairs.size());
   for (std::size_t q = 0; q < a.pairs.size(); ++q)
     ASSERT_EQ(a.pairs.state[q].tangential_force, b.pairs.state[q].tangential_force) << "pair " << q;
+  fs::remove_all(d);
+}
+
+// A pull-out resumed with other physics (another stiffness, more particles) is refused before a
+// file is written, naming each entry with both values; its run-control entries may change. A
+// checkpoint written before checkpoints kept their input (the validation campaign's) still
+// resumes, and the terminal says its input was not checked. About 3 s (the tiny tank's fill).
+TEST(PullOutCommand, ResumeWithOtherPhysicsRefused)
+{
+  using geohybrid::apps::run_pullout_command;
+  const fs::path d = test_directory();
+  const std::string input = write_resume_input(d, "stopped");
+  ASSERT_EQ(run_pullout_command(input, false, {{"stop after steps", "10"}}), 0);
+  const fs::path checkpoint = d / "stopped" / "checkpoint.h5";
+  const std::string parameters = contents_of(d / "stopped" / "parameters.prm");
+  std::string message;
+  try
+    {
+      run_pullout_command(input, true,
+                          {{"Soil/Particle contact/normal stiffness", "2e7"}, {"Filling/number of particles", "500"},
+                           {"Pull/rate", "0.02"}});
+    }
+  catch (const std::exception &e)
+    {
+      message = e.what();
+    }
+  EXPECT_NE(message.find("cannot resume from '" + checkpoint.string() + "': input file '" + input + "' differs"),
+            std::string::npos)
+    << message;
+  EXPECT_NE(message.find("'Soil/Particle contact/normal stiffness' = '2e7' (checkpoint: '1e7')"), std::string::npos)
+    << message;
+  EXPECT_NE(message.find("'Filling/number of particles' = '500' (checkpoint: '400')"), std::string::npos) << message;
+  // The pull has started: its rate is part of the run now.
+  EXPECT_NE(message.find("'Pull/rate' = '0.02' (checkpoint: '0.01')"), std::string::npos) << message;
+  EXPECT_EQ(contents_of(d / "stopped" / "parameters.prm"), parameters);
+
+  // As a checkpoint of an earlier version: no input kept. It resumes (threads and the stop changed).
+  geohybrid::dem::CommandState command;
+  const geohybrid::dem::DemSystemState state = geohybrid::dem::read_checkpoint(checkpoint, command);
+  ASSERT_EQ(command.texts.count(geohybrid::apps::checkpoint_input_key), 1u);
+  command.texts.clear();
+  geohybrid::dem::write_checkpoint(state, command, checkpoint);
+  testing::internal::CaptureStdout();
+  const int status = run_pullout_command(input, true, {{"threads", "2"}, {"stop after steps", "20"}});
+  const std::string said = testing::internal::GetCapturedStdout();
+  ASSERT_EQ(status, 0);
+  EXPECT_NE(said.find(checkpoint.string() + " was written before checkpoints kept their input"), std::string::npos)
+    << said;
+  // Its next checkpoint keeps this run's input.
+  EXPECT_EQ(geohybrid::dem::read_checkpoint_command(checkpoint).texts.count(geohybrid::apps::checkpoint_input_key), 1u);
   fs::remove_all(d);
 }

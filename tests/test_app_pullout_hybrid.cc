@@ -239,6 +239,20 @@ TEST(PullOutHybridMode, ResumesAStoppedPullBitForBit)
   EXPECT_FALSE(fs::exists(d / "stopped" / "summary.json")); // not a finished run
   ASSERT_TRUE(fs::exists(d / "stopped" / "filled_box.h5"));
   ASSERT_TRUE(fs::exists(d / "stopped" / "checkpoint.h5"));
+  // Resumed with another continuum: refused before the set-up, naming the entry and the file.
+  std::string refused;
+  try
+    {
+      run_pullout_command(stopped, true, {{"Hybrid/continuum interface friction angle", "22"}});
+    }
+  catch (const std::exception &e)
+    {
+      refused = e.what();
+    }
+  EXPECT_NE(refused.find("cannot resume from '" + (d / "stopped" / "filled_box.h5").string() + "'"), std::string::npos)
+    << refused;
+  EXPECT_NE(refused.find("'Hybrid/continuum interface friction angle' = '22' (checkpoint: '20')"), std::string::npos)
+    << refused;
   ASSERT_EQ(run_pullout_command(stopped, true, {{"stop after steps", "5000"}}), 0);
   EXPECT_FALSE(fs::exists(d / "stopped" / "summary.json"));
   ASSERT_EQ(run_pullout_command(stopped, true), 0);
