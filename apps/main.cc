@@ -24,6 +24,7 @@
 #include "apps/output_guard.h"
 #include "apps/pullout_command.h"
 #include "apps/pullout_seeds.h"
+#include "apps/rank_error.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -228,7 +229,12 @@ int main(int argc, char **argv)
     }
   catch (const std::exception &e)
     {
-      std::cerr << "geohybrid " << argv[1] << ": error: " << e.what() << '\n';
+      // Under mpirun every rank stops at an error of the input: rank 0 says it, once; an error of
+      // one rank alone (RankError) is said by that rank.
+      const unsigned int rank = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+      if (rank == 0 || dynamic_cast<const geohybrid::apps::RankError *>(&e) != nullptr)
+        std::cerr << "geohybrid " << argv[1] << (rank > 0 ? " (rank " + std::to_string(rank) + ")" : std::string())
+                  << ": error: " << e.what() << '\n';
       return 1;
     }
 }

@@ -358,7 +358,7 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
         // The curve up to the last converged point is kept, without summary.json: the directory
         // does not look like a finished run (apps/run_directory.h).
         on_rank_zero(comm, [&] {
-          progress->finish();
+          progress->stop(); // where it stopped, not 100 %
           output->finish("FEM (implicit, stopped)", in.experimental_T_max, in.pull.final_displacement);
         });
         throw std::runtime_error(where + ": the implicit solver stopped at head displacement " +

@@ -5,6 +5,7 @@
 #include "plot.h"
 #include "pullout_command.h"
 #include "pullout_input.h"
+#include "rank_error.h"
 #include "run_directory.h"
 
 #include <deal.II/base/mpi.h>
@@ -138,7 +139,7 @@ int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm commu
                         out.string() + ", no summary.json there",
                       resumable);
   if (!failure.empty())
-    throw std::runtime_error("geohybrid pullout --seeds: " + failure);
+    throw RankError("geohybrid pullout --seeds: " + failure); // this rank's own: it prints it
   if (n_failed > 0)
     throw std::runtime_error("geohybrid pullout --seeds: the run of a seed on another rank failed (" +
                              std::to_string(n_failed) + " rank(s)); see its message");

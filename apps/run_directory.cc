@@ -5,6 +5,8 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
+#include <cctype>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -56,10 +58,46 @@ std::string with_includes_resolved(const std::filesystem::path &file)
 }
 } // namespace
 
+namespace
+{
+/// Refuses a file that is not a parameter file before deal.II reads it: deal.II would run an
+/// empty one with every default (a 20,000-particle tank), and quote a binary one's bytes.
+void check_input_text(const std::string &input_file)
+{
+  std::ifstream in(input_file, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.eof() && in.fail())
+    throw std::runtime_error("input file '" + input_file + "' cannot be read");
+  for (std::size_t k = 0; k < text.size(); ++k)
+    {
+      const auto c = static_cast<unsigned char>(text[k]);
+      if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f') || c == 0x7f)
+        throw std::runtime_error("input file '" + input_file + "' is not a text file (a control byte at offset " +
+                                 std::to_string(k) + "): give a parameter file (.prm or .json)");
+    }
+  // Empty: nothing but blanks and comments ('#' to the end of the line; a .json file's '{}').
+  bool comment = false, empty = true;
+  for (const char c : text)
+    {
+      if (c == '\n')
+        comment = false;
+      else if (c == '#')
+        comment = true;
+      else if (!comment && c != '{' && c != '}' && !std::isspace(static_cast<unsigned char>(c)))
+        empty = false;
+    }
+  if (empty)
+    throw std::runtime_error("input file '" + input_file +
+                             "' is empty: it sets no parameter (a run of every default is not what it meant); "
+                             "--print-parameters lists every parameter");
+}
+} // namespace
+
 void parse_input_file(dealii::ParameterHandler &prm, const std::string &input_file)
 {
   if (!std::filesystem::is_regular_file(input_file))
     throw std::runtime_error("input file '" + input_file + "' does not exist");
+  check_input_text(input_file);
   try
     {
       if (std::filesystem::path(input_file).extension() == ".prm")
@@ -311,6 +349,12 @@ void ProgressReport::finish()
 {
   update(end_);
   if (terminal_)
+    std::fprintf(stderr, "\n");
+}
+
+void ProgressReport::stop()
+{
+  if (terminal_ && last_percent_ >= 0)
     std::fprintf(stderr, "\n");
 }
 } // namespace geohybrid::apps

@@ -88,7 +88,10 @@ public:
   ProgressReport(std::string label, double end);
   /// Reports progress at `now` (same unit as end); cheap when nothing needs printing.
   void update(double now);
+  /// The end reached: the bar at 100 %.
   void finish();
+  /// A run that failed: the bar's line ended where it stands (not at 100 %).
+  void stop();
 
 private:
   std::string label_;

@@ -93,13 +93,28 @@ ParticleSet read_particle_csv(const std::filesystem::path &file, double density,
   const auto fail = [&](const std::string &what) {
     throw std::runtime_error("particle CSV '" + file.string() + "', line " + std::to_string(line_number) + ": " + what);
   };
+  const auto n_fields = [](std::string text) {
+    std::replace(text.begin(), text.end(), ',', ' ');
+    std::istringstream words(text);
+    std::size_t n = 0;
+    for (std::string word; words >> word;)
+      ++n;
+    return n;
+  };
+  std::size_t header_fields = 0; // none: no header line
   while (std::getline(in, line))
     {
       ++line_number;
       if (line.empty() || line[0] == '#')
         continue;
       if (line_number == 1 || std::isalpha(static_cast<unsigned char>(line[0])))
-        continue; // header
+        {
+          header_fields = n_fields(line); // header
+          continue;
+        }
+      // A row cut short would leave its last columns (a cluster id) silently unset.
+      if (const std::size_t n = n_fields(line); n < header_fields)
+        fail("has " + std::to_string(n) + " fields, fewer than the " + std::to_string(header_fields) + " of the header");
       std::replace(line.begin(), line.end(), ',', ' ');
       std::istringstream fields(line);
       Row row{0, 0, 0, 0, 0, 0, -1, line_number};

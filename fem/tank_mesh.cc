@@ -1,5 +1,6 @@
 #include "tank_mesh.h"
 
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
@@ -24,14 +25,31 @@ void read_tank_mesh(dealii::parallel::distributed::Triangulation<dim> &mesh, con
                                 "' (missing? meshes/ holds the .msh files generated from the .geo sources)");
   dealii::GridIn<dim> grid_in;
   grid_in.attach_triangulation(mesh);
+  const std::string cannot_read = "tank mesh: cannot read '" + file + "' as a gmsh 2.2 ASCII mesh of quadrilaterals";
   try
     {
       grid_in.read_msh(input);
     }
+  catch (const dealii::ExceptionBase &e)
+    {
+      // deal.II's what() holds the source line and a stack trace: only its own explanation, on one line.
+      std::ostringstream info;
+      e.print_info(info);
+      std::string reason;
+      std::istringstream words(info.str());
+      for (std::string word; words >> word;)
+        reason += (reason.empty() ? "" : " ") + word;
+      // It may quote the file: a damaged one's bytes are not printed.
+      for (char &c : reason)
+        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f)
+          c = '?';
+      if (reason.size() > 300)
+        reason = reason.substr(0, 300) + "...";
+      throw std::invalid_argument(cannot_read + (reason.empty() ? std::string() : ": " + reason));
+    }
   catch (const std::exception &e)
     {
-      throw std::invalid_argument("tank mesh: cannot read '" + file +
-                                  "' as a gmsh 2.2 ASCII mesh of quadrilaterals: " + e.what());
+      throw std::invalid_argument(cannot_read + ": " + e.what());
     }
   const std::vector<dealii::types::boundary_id> ids = mesh.get_boundary_ids();
   if (std::find(ids.begin(), ids.end(), 0) != ids.end())

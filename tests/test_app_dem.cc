@@ -330,3 +330,16 @@ TEST_F(DemCommand, AnotherRunsDirectoryRefusedUnlessOverwrite)
   EXPECT_FALSE(fs::exists(directory_ / "out" / "particle_history.csv"));
   EXPECT_EQ(contents(directory_ / "out" / "notes.txt"), "the first run\n");
 }
+
+// A particle CSV row with fewer fields than its header (a cluster id missing) is refused, naming
+// the file and the line, instead of making the particle a lone disc.
+TEST_F(DemCommand, CsvRowShorterThanItsHeaderRefused)
+{
+  std::ofstream(directory_ / "short.csv") << "x,y,radius,vx,vy,omega,cluster_id\n0.04,0.1,0.01,0,0,0,0\n"
+                                             "0.0601,0.1,0.01,0,0,0\n";
+  const std::string message = error_of(input("subsection Particles\n  set source = csv\n  set csv file = short.csv\nend\n"));
+  EXPECT_NE(message.find("particle CSV '" + (directory_ / "short.csv").string() + "', line 3: has 6 fields, fewer than "
+                         "the 7 of the header"),
+            std::string::npos)
+    << message;
+}

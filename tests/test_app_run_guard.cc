@@ -142,3 +142,46 @@ TEST(ResumeCheck, NamesEveryDifferingEntryWithBothValues)
             std::string::npos)
     << said;
 }
+
+// An empty input (or one of comments only) is refused instead of running every default; a binary
+// file is refused without its bytes in the message.
+TEST(InputFile, EmptyAndBinaryFilesRefused)
+{
+  geohybrid::testing::TemporaryDirectory d("input_text");
+  const auto message_of = [&](const std::string &name, const std::string &bytes) {
+    std::ofstream(d.path / name, std::ios::binary) << bytes;
+    dealii::ParameterHandler prm;
+    geohybrid::apps::declare_dem_parameters(prm);
+    return guard_error_of([&] { geohybrid::apps::parse_input_file(prm, (d.path / name).string()); });
+  };
+  for (const auto &[name, bytes] : {std::pair<std::string, std::string>{"empty.prm", ""},
+                                    {"comments.prm", "# nothing set yet\n\n   \n"},
+                                    {"empty.json", "{ }\n"}})
+    {
+      const std::string message = message_of(name, bytes);
+      EXPECT_NE(message.find("input file '" + (d.path / name).string() + "' is empty"), std::string::npos) << message;
+    }
+  const std::string binary = message_of("run.prm", std::string("\x7f" "ELF\x02\x01\x01\0\0\0set \xff\xfe", 16));
+  EXPECT_NE(binary.find("is not a text file (a control byte at offset 0)"), std::string::npos) << binary;
+  EXPECT_EQ(binary.find("ELF"), std::string::npos) << binary;
+  EXPECT_EQ(message_of("fine.prm", "set threads = 1\n"), "");
+}
+
+// A run that fails ends its progress line where it stands: a pull that fails at 0 mm does not
+// read 100 % (fem mode's implicit solver stopping at its first increment).
+TEST(ProgressReport, StopDoesNotReadFullWhenTheRunFails)
+{
+  const auto said_by = [](bool fails) {
+    testing::internal::CaptureStderr();
+    geohybrid::apps::ProgressReport progress("pulling", 0.05);
+    progress.update(0.0);
+    if (fails)
+      progress.stop();
+    else
+      progress.finish();
+    return testing::internal::GetCapturedStderr();
+  };
+  const std::string failed = said_by(true), finished = said_by(false);
+  EXPECT_EQ(failed.find("100%"), std::string::npos) << failed;
+  EXPECT_NE(finished.find("pulling: 100%"), std::string::npos) << finished;
+}

@@ -9,7 +9,11 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
+#include <unistd.h>
 
 using namespace geohybrid::fem;
 using namespace geohybrid::fem::testing;
@@ -100,6 +104,40 @@ TEST(TankMesh, MissingFileAndUnknownBoundaryIdNameTheFile)
     Mesh mesh(MPI_COMM_WORLD);
     EXPECT_THROW(read_tank_mesh(mesh, mesh_directory + "/insa_tank_runout.geo"), std::invalid_argument);
   }
+}
+
+// A damaged mesh file (cut short, or bytes that are no mesh) gives one line naming the file, not
+// deal.II's report with its source lines and stack trace, and no bytes of the file.
+TEST(TankMesh, CorruptFileGivesOneLineNamingTheFile)
+{
+  std::ifstream whole(mesh_directory + "/insa_tank_runout.msh");
+  const std::string text((std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+  ASSERT_GT(text.size(), 1000u);
+  const std::string cut = text.substr(0, text.find("$Elements") + 30);
+  const std::filesystem::path directory = std::filesystem::temp_directory_path();
+  int k = 0;
+  for (const std::string &bytes : {cut, std::string("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n\x01\xff\x02zz\n")})
+    {
+      const std::filesystem::path file =
+        directory / ("geohybrid_corrupt_" + std::to_string(::getpid()) + "_" + std::to_string(k++) + ".msh");
+      std::ofstream(file, std::ios::binary) << bytes;
+      Mesh mesh(MPI_COMM_WORLD);
+      std::string message;
+      try
+        {
+          read_tank_mesh(mesh, file.string());
+        }
+      catch (const std::invalid_argument &e)
+        {
+          message = e.what();
+        }
+      std::filesystem::remove(file);
+      EXPECT_EQ(message.find("tank mesh: cannot read '" + file.string() + "' as a gmsh 2.2 ASCII mesh"), 0u) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      EXPECT_EQ(message.find("Stacktrace"), std::string::npos) << message;
+      EXPECT_EQ(message.find("An error occurred"), std::string::npos) << message;
+      EXPECT_EQ(message.find('\xff'), std::string::npos) << message;
+    }
 }
 
 // The generated tank (make_tank_mesh) puts a row of cells of exactly the cell size centred on
