@@ -363,7 +363,8 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
         }
       earlier_wall_time = saved.real("wall_time_s", 1)[0];
     }
-  prepare_output_directory(out.string(), resume);
+  // A resume with no checkpoint fills the tank again: in its own run's directory only.
+  prepare_output_directory(out.string(), resume && (filled || holds_same_pullout_run(out, prm)));
   if (!filled)
     {
       if (resume)

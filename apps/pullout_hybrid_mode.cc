@@ -308,7 +308,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
     for (const auto &file : {box_file, checkpoint_file})
       if (std::filesystem::exists(file))
         check_pullout_checkpoint(file, prm, where);
-  prepare_output_directory(out_name, resume);
+  prepare_output_directory(out_name, resume && (std::filesystem::exists(box_file) || holds_same_pullout_run(out, prm)));
   dem::CommandState input;
   store_pullout_input(prm, input);
   if (!resume)

@@ -155,4 +155,21 @@ void check_pullout_checkpoint(const std::filesystem::path &file, const dealii::P
                                                          : pullout_run_control_entries(),
                       file, where, "geohybrid pullout");
 }
+bool holds_same_pullout_run(const std::filesystem::path &directory, const dealii::ParameterHandler &prm)
+{
+  const std::filesystem::path file = directory / "parameters.prm";
+  if (!std::filesystem::is_regular_file(file))
+    return false;
+  dealii::ParameterHandler there;
+  declare_pullout_parameters(there);
+  try
+    {
+      parse_input_file(there, file.string());
+    }
+  catch (const std::exception &)
+    {
+      return false; // not a parameter file of this version: not known to be the same run
+    }
+  return pullout_parameters_hash(there) == pullout_parameters_hash(prm);
+}
 } // namespace geohybrid::apps

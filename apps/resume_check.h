@@ -56,4 +56,8 @@ void store_pullout_input(const dealii::ParameterHandler &prm, dem::CommandState 
 /// only; throws std::runtime_error naming the file and `where` if it cannot be read.
 void check_pullout_checkpoint(const std::filesystem::path &file, const dealii::ParameterHandler &prm,
                               const std::string &where);
+/// Whether `directory` holds a pull-out run of the same physics as `prm` (its parameters.prm
+/// hashes as `prm`, apps/parameters_hash.h): a --resume that finds no checkpoint there starts
+/// that run again in its own directory; one of another run's is refused as a fresh run is.
+bool holds_same_pullout_run(const std::filesystem::path &directory, const dealii::ParameterHandler &prm);
 } // namespace geohybrid::apps

@@ -458,7 +458,8 @@ TEST(PullOutCommand, ResumesAStoppedPullBitForBit)
 // A pull-out resumed with other physics (another stiffness, more particles) is refused before a
 // file is written, naming each entry with both values; its run-control entries may change. A
 // checkpoint written before checkpoints kept their input (the validation campaign's) still
-// resumes, and the terminal says its input was not checked. About 3 s (the tiny tank's fill).
+// resumes, and the terminal says its input was not checked. Without a checkpoint, --resume fills
+// again only in a directory of the same run. About 6 s (the tiny tank filled twice).
 TEST(PullOutCommand, ResumeWithOtherPhysicsRefused)
 {
   using geohybrid::apps::run_pullout_command;
@@ -502,5 +503,26 @@ TEST(PullOutCommand, ResumeWithOtherPhysicsRefused)
     << said;
   // Its next checkpoint keeps this run's input.
   EXPECT_EQ(geohybrid::dem::read_checkpoint_command(checkpoint).texts.count(geohybrid::apps::checkpoint_input_key), 1u);
+
+  // No checkpoint left: a --resume fills the tank again, in its own run's directory only.
+  fs::remove(checkpoint);
+  fs::remove(d / "stopped" / "filled_tank.h5");
+  message.clear();
+  try
+    {
+      run_pullout_command(input, true, {{"Filling/seed", "4"}});
+    }
+  catch (const std::exception &e)
+    {
+      message = e.what();
+    }
+  EXPECT_NE(message.find("output directory '" + (d / "stopped").string() + "' holds the files of another run"),
+            std::string::npos)
+    << message;
+  testing::internal::CaptureStdout();
+  const int refilled = run_pullout_command(input, true, {{"stop after steps", "1"}});
+  const std::string refill_said = testing::internal::GetCapturedStdout();
+  ASSERT_EQ(refilled, 0);
+  EXPECT_NE(refill_said.find("filling the tank again from the start"), std::string::npos) << refill_said;
   fs::remove_all(d);
 }
