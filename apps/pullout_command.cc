@@ -161,9 +161,9 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     Patterns::Double(1e-9, 0.1), "Settling stops below this unbalanced-force ratio [-]");
   prm.declare_entry("growth friction of later lifts", fill.later_lifts_start_near_the_lift_below ? "near the lift below" : "as the first",
                     Patterns::Selection("near the lift below|as the first"),
-                    "REDF's growth friction at the start of each lift after the first: one step above the friction the "
-                    "lift below ended its growth at (the lifts end at the same one; a tenth of the growth steps), or "
-                    "the material's, as the first lift starts");
+                    "REDF's growth friction at the start of each lift after the first (of the same porosity): one step "
+                    "above the friction the lift below ended its growth at (a 6,000-cluster wrap-around tank: its later "
+                    "lifts in a tenth of the growth steps), or the material's, as the first lift starts");
   prm.declare_entry("seed", "1", Patterns::Integer(0), "Seed of the random fill [-]");
   prm.leave_subsection();
 

@@ -101,9 +101,11 @@ TEST(TankFilling, LayersAtTargetPorosityInEquilibriumUnderGravity)
 // A lift with the porosity of the one below starts its growth one REDF step above the friction
 // that lift ended at (TankFillingSpec::later_lifts_start_near_the_lift_below): the drops from the
 // material's friction down to it are not made again. Two lifts of the small tank at porosity
-// 0.205 and a 20 deg material, filled both ways: the second lift ends at the first's friction or
-// one step from it, at its porosity, in at most half the growth steps, and the fill is in
-// equilibrium with the base carrying its weight.
+// 0.205 and a 20 deg material, filled both ways: the second lift ends at most one step above the
+// first's friction, at its porosity, in fewer growth steps, and the fill is in equilibrium with
+// the base carrying its weight. (Measured: this thin top lift, under its lid, goes on down to
+// 2.2 deg from the first's 7.0, in 85,000 growth steps against 182,000; the lifts of the
+// 6,000-cluster wrap-around tank all end at 4.02 deg, and the later ones take a tenth.)
 TEST(TankFilling, LaterLiftsStartNearTheFrictionOfTheLiftBelow)
 {
   TankFillingSpec spec = small_tank();
@@ -122,7 +124,7 @@ TEST(TankFilling, LaterLiftsStartNearTheFrictionOfTheLiftBelow)
   EXPECT_EQ(first.growth_friction_deg, from_the_top.layers[0].growth_friction_deg);
   EXPECT_LT(first.growth_friction_deg, 0.5 * spec.particle_contact.friction_angle_deg);
   EXPECT_LE(second.growth_friction_deg, first.growth_friction_deg / redf_friction_drop * (1.0 + 1e-12));
-  EXPECT_LT(second.n_growth_steps, 0.5 * from_the_top.layers[1].n_growth_steps);
+  EXPECT_LT(second.n_growth_steps, 0.6 * from_the_top.layers[1].n_growth_steps);
   for (const TankLayer &layer : near_below.layers)
     EXPECT_NEAR(layer.porosity, layer.target_porosity, 2.0 * spec.porosity_tolerance);
   const DemSystem &system = near_below.system;
