@@ -22,7 +22,7 @@ namespace geohybrid::apps
 std::uint64_t fnv1a_64(const std::string &text);
 
 /// Raised when a default changes the numbers of an input that does not set that entry.
-inline constexpr const char *numbers_version = "geohybrid numbers 1";
+inline constexpr const char *numbers_version = "geohybrid numbers 2";
 
 /// numbers_version, then the entries of `prm` whose values differ from those of `defaults` (the
 /// same declarations, nothing parsed), one line "Subsection/.../entry = value" each, in

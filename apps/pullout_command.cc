@@ -160,6 +160,11 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "PFC local damping while filling and pulling [-]");
   prm.declare_entry("equilibrium unbalanced ratio", text(fill.equilibrium_unbalanced_ratio),
                     Patterns::Double(1e-9, 0.1), "Settling stops below this unbalanced-force ratio [-]");
+  prm.declare_entry("growth friction of later lifts", fill.later_lifts_start_near_the_lift_below ? "near the lift below" : "as the first",
+                    Patterns::Selection("near the lift below|as the first"),
+                    "REDF's growth friction at the start of each lift after the first (of the same porosity): one step "
+                    "above the friction the lift below ended its growth at (a 6,000-cluster wrap-around tank: its later "
+                    "lifts in a tenth of the growth steps), or the material's, as the first lift starts");
   prm.declare_entry("seed", "1", Patterns::Integer(0), "Seed of the random fill [-]");
   prm.leave_subsection();
 
@@ -258,6 +263,7 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool
   f.growth_stress = prm.get_double("growth stress");
   f.local_damping = prm.get_double("local damping");
   f.equilibrium_unbalanced_ratio = prm.get_double("equilibrium unbalanced ratio");
+  f.later_lifts_start_near_the_lift_below = prm.get("growth friction of later lifts") == "near the lift below";
   f.seed = static_cast<std::uint64_t>(prm.get_integer("seed"));
   prm.leave_subsection();
 
@@ -447,7 +453,10 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   std::cout << "pullout: fill steps per layer (growth + settling)";
   for (const dem::TankLayer &layer : tank.tank.layers)
     std::cout << ' ' << layer.n_growth_steps << '+' << layer.n_settling_steps;
-  std::cout << ", settling with the sheet freed " << tank.n_final_settling_steps << "; time step "
+  std::cout << ", lowest growth friction per layer";
+  for (const dem::TankLayer &layer : tank.tank.layers)
+    std::cout << ' ' << number(layer.growth_friction_deg, 3);
+  std::cout << " deg, settling with the sheet freed " << tank.n_final_settling_steps << "; time step "
             << number(system.time_step(), 4) << " s (critical " << number(system.critical_time_step(), 4)
             << " s); the pull takes " << pull->expected_steps() << " steps" << std::endl;
   ProgressReport progress("pulling", in.pull.final_displacement - u_first);

@@ -14,12 +14,19 @@ void PairContacts::resize_results()
     v->assign(n, 0.0);
 }
 
-void NeighbourSearch::rebuild_pairs(const ParticleSet &p, double skin, int n_threads, PairContacts &pairs)
+void NeighbourSearch::rebuild_pairs(const ParticleSet &p, double skin, int n_threads, PairContacts &pairs,
+                                    bool carry_forces)
 {
   const std::size_t nd = p.n_discs_total();
   std::swap(previous_.disc_i, pairs.disc_i);
   std::swap(previous_.disc_j, pairs.disc_j);
   std::swap(previous_.state, pairs.state);
+  if (carry_forces)
+    {
+      std::swap(previous_.force_x, pairs.force_x);
+      std::swap(previous_.force_y, pairs.force_y);
+      std::swap(previous_.elastic_normal_force, pairs.elastic_normal_force);
+    }
   pairs.disc_i.clear();
   pairs.disc_j.clear();
   pairs.state.clear();
@@ -137,6 +144,7 @@ void NeighbourSearch::rebuild_pairs(const ParticleSet &p, double skin, int n_thr
   // Carry the history over: both lists are sorted by (i, j).
   const std::size_t n = pairs.disc_i.size();
   pairs.state.assign(n, ContactState{});
+  pairs.resize_results();
   std::size_t k = 0;
   for (std::size_t q = 0; q < n && k < previous_.disc_i.size(); ++q)
     {
@@ -145,9 +153,16 @@ void NeighbourSearch::rebuild_pairs(const ParticleSet &p, double skin, int n_thr
       while (k < previous_.disc_i.size() && key(previous_.disc_i[k], previous_.disc_j[k]) < target)
         ++k;
       if (k < previous_.disc_i.size() && key(previous_.disc_i[k], previous_.disc_j[k]) == target)
-        pairs.state[q] = previous_.state[k];
+        {
+          pairs.state[q] = previous_.state[k];
+          if (carry_forces)
+            {
+              pairs.force_x[q] = previous_.force_x[k];
+              pairs.force_y[q] = previous_.force_y[k];
+              pairs.elastic_normal_force[q] = previous_.elastic_normal_force[k];
+            }
+        }
     }
-  pairs.resize_results();
 
   build_body_adjacency(p, pairs, static_cast<std::size_t>(n_threads));
 }

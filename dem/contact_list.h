@@ -75,7 +75,11 @@ class NeighbourSearch
 public:
   /// Rebuilds `pairs` (keeping the history of pairs present before) for discs closer than
   /// r_i + r_j + skin; discs of the same body never form a pair.
-  void rebuild_pairs(const ParticleSet &particles, double skin, int n_threads, PairContacts &pairs);
+  /// With `carry_forces`, a pair present before also keeps its last force (a contact that is
+  /// not evaluated again, DemSystem::set_skip_contacts_between_fixed_bodies); otherwise the
+  /// forces start at zero.
+  void rebuild_pairs(const ParticleSet &particles, double skin, int n_threads, PairContacts &pairs,
+                     bool carry_forces = false);
 
   /// Rebuilds the list of discs within r + skin of the wall, keeping history.
   void rebuild_wall(const ParticleSet &particles, const Wall &wall, double skin, WallContacts &contacts);

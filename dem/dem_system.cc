@@ -222,14 +222,14 @@ void DemSystem::set_time_step(double dt)
   time_step_ = dt;
 }
 
-void DemSystem::scale_particle_sizes(double factor)
+void DemSystem::scale_particle_sizes(double factor, std::size_t first_body)
 {
   if (!(factor > 0.0))
     throw std::invalid_argument("scale_particle_sizes: the factor must be positive");
   double r_max = 0.0;
   for (double r : particles_.disc_radius)
     r_max = std::max(r_max, r);
-  particles_.scale_sizes(factor);
+  particles_.scale_sizes(factor, first_body);
   radius_growth_since_rebuild_ += std::max(0.0, (factor - 1.0) * r_max);
 }
 
@@ -483,7 +483,14 @@ double kick_and_drift_range(ParticleSet &p, const BodyLoopInput &in, std::size_t
     }
   if constexpr (discs == 0)
     for (std::size_t b = begin; b < end; ++b)
-      max_move2 = std::max(max_move2, p.place_discs(b, reference_x, reference_y));
+      {
+        // A fixed body at rest (a tank's settled lift while the next one grows: up to two thirds
+        // of the bodies) has not moved: its discs stand where they were placed, and turning its
+        // rotation into cos and sin again would give the same bits at the price of a sincos.
+        const bool at_rest = inverse_mass[b] == 0.0 && vx[b] == 0.0 && vy[b] == 0.0 && omega[b] == 0.0;
+        max_move2 = std::max(max_move2, at_rest ? p.disc_move2(b, reference_x, reference_y)
+                                                : p.place_discs(b, reference_x, reference_y));
+      }
   return max_move2;
 }
 
@@ -600,6 +607,15 @@ void DemSystem::kick_and_drift()
   if (book_damping)
     accumulated_.local_damping_dissipated -= deterministic_sum(body_scratch_, settings_.n_threads);
   max_disc_move_ = std::sqrt(max_move2);
+  if (skip_fixed_contacts_)
+    {
+      steps_at_rest_.resize(nb, 0);
+      for (std::size_t b = 0; b < nb; ++b)
+        {
+          const bool at_rest = p.inverse_mass[b] == 0.0 && p.vx[b] == 0.0 && p.vy[b] == 0.0 && p.omega[b] == 0.0;
+          steps_at_rest_[b] = at_rest ? static_cast<std::uint8_t>(std::min(steps_at_rest_[b] + 1, 2)) : 0;
+        }
+    }
 }
 
 void DemSystem::final_kick(std::size_t begin, std::size_t end)
@@ -689,7 +705,7 @@ void DemSystem::rebuild_if_needed()
   if (!rebuild_needed_)
     return;
   single_centred_discs_ = p.single_centred_discs();
-  neighbour_search_.rebuild_pairs(p, skin_, settings_.n_threads, pairs_);
+  neighbour_search_.rebuild_pairs(p, skin_, settings_.n_threads, pairs_, skip_fixed_contacts_);
   for (std::size_t w = 0; w < walls_.size(); ++w)
     neighbour_search_.rebuild_wall(p, walls_[w], skin_, wall_contacts_[w]);
   for (std::size_t s = 0; s < sheets_.size(); ++s)
@@ -737,6 +753,10 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
   const LinearContactLaw &law = particle_law_;
   PairContacts &c = pairs_;
   const double dt = time_step_;
+  // Contacts between bodies fixed and at rest since their last evaluation are skipped
+  // (set_skip_contacts_between_fixed_bodies); none before the first kick has counted them.
+  const bool skip_fixed = skip_fixed_contacts_ && steps_at_rest_.size() == p.n_bodies();
+  const std::uint8_t *const steps_at_rest = steps_at_rest_.data();
 
   // One contact: the force on disc i, stored per pair, and the moments on both bodies.
   // Returns false for a pair that is apart (and not bonded): its force is zero.
@@ -756,11 +776,18 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
           c.friction_work[q] = c.viscous_work[q] = 0.0;
         return false;
       }
+    const std::uint32_t bi = p.disc_body[i], bj = p.disc_body[j];
+    if (skip_fixed && state.touching && steps_at_rest[bi] == 2 && steps_at_rest[bj] == 2)
+      {
+        // Its stored force is what an evaluation would give again (set_skip_contacts_between_fixed_bodies).
+        if constexpr (track_energy)
+          c.friction_work[q] = c.viscous_work[q] = 0.0;
+        return false;
+      }
     const double distance = std::sqrt(distance2), inverse_distance = 1.0 / distance;
     const Vec2 normal(dx * inverse_distance, dy * inverse_distance);
     const Vec2 tangent = perp(normal);
     const double overlap = radius_sum - distance;
-    const std::uint32_t bi = p.disc_body[i], bj = p.disc_body[j];
     const Vec2 contact_point = Vec2(p.disc_x[i], p.disc_y[i]) + (p.disc_radius[i] - 0.5 * overlap) * normal;
     const Vec2 lever_i = contact_point - Vec2(p.x[bi], p.y[bi]);
     const Vec2 lever_j = contact_point - Vec2(p.x[bj], p.y[bj]);

@@ -140,9 +140,9 @@ public:
   void step();
   void run_steps(std::uint64_t n);
 
-  /// Scales every particle's size by `factor` (radius expansion); the neighbour lists account for
-  /// the growth of the radii.
-  void scale_particle_sizes(double factor);
+  /// Scales the size of every particle from `first_body` on by `factor` (radius expansion); the
+  /// neighbour lists account for the growth of the radii.
+  void scale_particle_sizes(double factor, std::size_t first_body = 0);
   double skin() const { return skin_; }
 
   /// Replaces the particle-particle law (e.g. REDF lowers the friction while growing radii);
@@ -250,6 +250,18 @@ public:
   /// index out of range or a fixed body.
   void set_constrained_bodies(const std::vector<std::uint32_t> &bodies);
 
+  /// While on, a touching contact between two bodies that are fixed and at rest, and were so at
+  /// its last evaluation too, is not evaluated again: its force cannot change, and stays stored
+  /// (carried over list rebuilds). The fixed bodies' resultants then leave those contacts out:
+  /// free them in a system whose forces are initialised again (initialise_forces_at_next_step).
+  /// A tank's settled lifts while the next one grows are up to two thirds of its contacts
+  /// (tank_filling.cc).
+  void set_skip_contacts_between_fixed_bodies(bool skip) { skip_fixed_contacts_ = skip; }
+
+  /// The next step starts, as the first one does, by evaluating every force at the present
+  /// positions (with gravity and the laws now in force) instead of using those of the last step.
+  void initialise_forces_at_next_step() { forces_initialised_ = false; }
+
   /// Forces the next step to rebuild the neighbour lists (after moving particles or walls by hand).
   void request_neighbour_rebuild() { rebuild_needed_ = true; }
   std::uint64_t n_neighbour_rebuilds() const { return n_rebuilds_; }
@@ -312,6 +324,10 @@ private:
   bool rebuild_needed_ = true;
   bool forces_initialised_ = false;
   bool single_centred_discs_ = false; ///< ParticleSet::single_centred_discs(), checked at rebuilds
+  bool skip_fixed_contacts_ = false;  ///< set_skip_contacts_between_fixed_bodies
+  /// With skip_fixed_contacts_: per body, the steps (up to 2) it has been fixed and at rest
+  /// (counted in kick_and_drift); a contact between two bodies at 2 was evaluated at rest.
+  std::vector<std::uint8_t> steps_at_rest_;
   std::uint64_t n_rebuilds_ = 0;
   std::uint64_t n_broken_bonds_ = 0;
 

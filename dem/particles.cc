@@ -133,10 +133,10 @@ std::size_t ParticleSet::add_two_disc_cluster(const Vec2 &com, double r_large, d
   return b;
 }
 
-void ParticleSet::scale_sizes(double factor)
+void ParticleSet::scale_sizes(double factor, std::size_t first_body)
 {
   const double f2 = factor * factor, f4 = f2 * f2;
-  for (std::size_t b = 0; b < n_bodies(); ++b)
+  for (std::size_t b = first_body; b < n_bodies(); ++b)
     {
       mass[b] *= f2;
       inertia[b] *= f4;
@@ -145,14 +145,14 @@ void ParticleSet::scale_sizes(double factor)
           inverse_mass[b] = 1.0 / mass[b];
           inverse_inertia[b] = 1.0 / inertia[b];
         }
+      for (std::uint32_t d = first_disc[b]; d < first_disc[b] + n_discs[b]; ++d)
+        {
+          disc_radius[d] *= factor;
+          disc_offset_x[d] *= factor;
+          disc_offset_y[d] *= factor;
+        }
+      place_discs(b, nullptr, nullptr);
     }
-  for (std::size_t d = 0; d < n_discs_total(); ++d)
-    {
-      disc_radius[d] *= factor;
-      disc_offset_x[d] *= factor;
-      disc_offset_y[d] *= factor;
-    }
-  update_disc_positions();
 }
 
 void ParticleSet::fix_body(std::size_t b)

@@ -43,9 +43,11 @@ struct ParticleSet
                                    double spacing, double angle, double density,
                                    std::int64_t id = -1);
 
-  /// Scales every body's size by `factor` about its centre of mass: radii and disc offsets by
-  /// factor, mass by factor^2, inertia by factor^4 (same density). Used by radius expansion.
-  void scale_sizes(double factor);
+  /// Scales the size of every body from `first_body` on by `factor` about its centre of mass:
+  /// radii and disc offsets by factor, mass by factor^2, inertia by factor^4 (same density), and
+  /// places their discs. Used by radius expansion (a tank's lift grows the bodies above the ones
+  /// already settled, which keep their sizes).
+  void scale_sizes(double factor, std::size_t first_body = 0);
 
   /// Makes body b immovable (infinite mass and inertia).
   void fix_body(std::size_t b);
@@ -60,6 +62,10 @@ struct ParticleSet
   /// does for every body). With reference positions (one per disc), returns the largest squared
   /// displacement of those discs from them; 0 otherwise.
   inline double place_discs(std::size_t b, const double *reference_x, const double *reference_y);
+
+  /// The largest squared displacement of body b's discs, as they stand, from the reference
+  /// positions (0 without them): what place_discs() returns for a body that has not moved.
+  inline double disc_move2(std::size_t b, const double *reference_x, const double *reference_y) const;
 
   /// True if every body is one disc at its centre of mass and body b owns disc b: the disc
   /// centres are then copies of the body centres.
@@ -99,6 +105,18 @@ inline double ParticleSet::place_discs(std::size_t b, const double *reference_x,
     }
   if (reference_x)
     for (std::uint32_t d = begin; d < end; ++d)
+      {
+        const double dx = disc_x[d] - reference_x[d], dy = disc_y[d] - reference_y[d];
+        max_move2 = std::max(max_move2, dx * dx + dy * dy);
+      }
+  return max_move2;
+}
+
+inline double ParticleSet::disc_move2(std::size_t b, const double *reference_x, const double *reference_y) const
+{
+  double max_move2 = 0.0;
+  if (reference_x)
+    for (std::uint32_t d = first_disc[b]; d < first_disc[b] + n_discs[b]; ++d)
       {
         const double dx = disc_x[d] - reference_x[d], dy = disc_y[d] - reference_y[d];
         max_move2 = std::max(max_move2, dx * dx + dy * dy);

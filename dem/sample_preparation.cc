@@ -386,7 +386,7 @@ RedfGrowthResult grow_by_redf(DemSystem &system, const RedfSpec &s, const RedfGr
                       << growing.jam_stress() << " Pa); choose a larger porosity or a lower stress";
               throw std::runtime_error(message.str());
             }
-          friction_deg = friction_deg > 0.5 ? 0.9 * friction_deg : 0.0;
+          friction_deg = friction_deg > 0.5 ? redf_friction_drop * friction_deg : 0.0;
           use_friction(friction_deg);
           steps_jammed = 0;
         }

@@ -115,6 +115,9 @@ RedfStartingSizes redf_starting_sizes(const RedfSpec &spec, double region_area, 
 void place_at_random(const RedfSpec &spec, const std::vector<Vec2> &vertices, const std::vector<double> &radii,
                      std::uint64_t seed, ParticleSet &particles);
 
+/// Each lowering of REDF's growth friction multiplies it by this (below 0.5 degrees, it goes to 0).
+inline constexpr double redf_friction_drop = 0.9;
+
 /// What REDF's growth stage acts on, so that the same loop grows a whole sample or one layer.
 struct RedfGrowth
 {

@@ -158,42 +158,6 @@ RedfSpec layer_redf_spec(const TankFillingSpec &t, std::size_t layer, std::size_
   return s;
 }
 
-/// Grows bodies [first_body, end) only. DemSystem scales every body (and accounts for the growth
-/// in its neighbour lists); the bodies below are then given back their sizes exactly. Shrinking
-/// them back cannot create a contact, so the neighbour lists stay valid.
-class GrowOnlyFrom
-{
-public:
-  GrowOnlyFrom(const ParticleSet &p, std::size_t first_body)
-    : n_bodies_(first_body), n_discs_(first_body < p.n_bodies() ? p.first_disc[first_body] : p.n_discs_total()),
-      mass_(p.mass.begin(), p.mass.begin() + n_bodies_), inertia_(p.inertia.begin(), p.inertia.begin() + n_bodies_),
-      inverse_mass_(p.inverse_mass.begin(), p.inverse_mass.begin() + n_bodies_),
-      inverse_inertia_(p.inverse_inertia.begin(), p.inverse_inertia.begin() + n_bodies_),
-      radius_(p.disc_radius.begin(), p.disc_radius.begin() + n_discs_),
-      offset_x_(p.disc_offset_x.begin(), p.disc_offset_x.begin() + n_discs_),
-      offset_y_(p.disc_offset_y.begin(), p.disc_offset_y.begin() + n_discs_)
-  {
-  }
-
-  void grow(DemSystem &system, double factor) const
-  {
-    system.scale_particle_sizes(factor);
-    ParticleSet &p = system.particles();
-    std::copy(mass_.begin(), mass_.end(), p.mass.begin());
-    std::copy(inertia_.begin(), inertia_.end(), p.inertia.begin());
-    std::copy(inverse_mass_.begin(), inverse_mass_.end(), p.inverse_mass.begin());
-    std::copy(inverse_inertia_.begin(), inverse_inertia_.end(), p.inverse_inertia.begin());
-    std::copy(radius_.begin(), radius_.end(), p.disc_radius.begin());
-    std::copy(offset_x_.begin(), offset_x_.end(), p.disc_offset_x.begin());
-    std::copy(offset_y_.begin(), offset_y_.end(), p.disc_offset_y.begin());
-    p.update_disc_positions(system.settings().n_threads);
-  }
-
-private:
-  std::size_t n_bodies_, n_discs_;
-  std::vector<double> mass_, inertia_, inverse_mass_, inverse_inertia_, radius_, offset_x_, offset_y_;
-};
-
 /// The tank's walls; with slot_top > slot_bottom, the front wall (x = width) is cut into a part
 /// below the slot and one above it.
 TankWalls add_tank_walls(DemSystem &system, const TankFillingSpec &t, double lid_level, double slot_bottom = 0.0,
@@ -479,8 +443,13 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
       layer.target_porosity = porosity_of(k);
       const double lid_level = has_band(k) ? layer.top + band : layer.top;
       const double space = cumulative_space[k + 1] - cumulative_space[k];
-      const RedfSpec s =
-        layer_redf_spec(t, k, particles_before(k + 1) - particles_before(k), layer.target_porosity);
+      RedfSpec s = layer_redf_spec(t, k, particles_before(k + 1) - particles_before(k), layer.target_porosity);
+      if (t.later_lifts_start_near_the_lift_below && !layers.empty() && porosity_of(k) == porosity_of(k - 1))
+        {
+          const double first = s.initial_growth_friction_deg >= 0.0 ? s.initial_growth_friction_deg
+                                                                    : s.particle_contact.friction_angle_deg;
+          s.initial_growth_friction_deg = std::min(first, layers.back().growth_friction_deg / redf_friction_drop);
+        }
       std::ostringstream region;
       region << "layer " << k + 1 << " of the tank (" << t.width << " m x " << space << " m to fill)";
       const std::string where = "tank filling, layer " + std::to_string(k + 1) + ": ";
@@ -605,11 +574,11 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
 
       // 2. Growth without gravity under the lid, to the porosity of the layer's slab.
       DemSystem growing(std::move(particles), material, growth_settings);
+      growing.set_skip_contacts_between_fixed_bodies(true); // the lifts below are fixed: their contacts cannot change
       walls = add_tank_walls(growing, t, lid_level, slot_bottom, slot_top);
       // A sheet laid on the layers below stays where it lies while this layer grows round it.
       for (const SparSheet &sheet : laid)
         growing.add_sheet(sheet);
-      const GrowOnlyFrom grow_layer(growing.particles(), first_body);
       double area_factor = 1.0; // (size now / starting size)^2 of the growing particles
       RedfGrowth growth;
       growth.jam_stress = [&] { return growing.walls()[walls.lid].normal_stress(); };
@@ -623,7 +592,7 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
         return 1.0 - (solid + area_factor * grown_solid) / (t.width * (layer.top - layer.bottom) - sheet_area);
       };
       growth.grow = [&](double factor) {
-        grow_layer.grow(growing, factor);
+        growing.scale_particle_sizes(factor, first_body); // the lifts below keep their sizes
         area_factor *= factor * factor;
       };
       const double done = static_cast<double>(k) / static_cast<double>(n_layers);
@@ -657,6 +626,10 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
       settled = std::make_unique<DemSystem>(state.particles, material, settling_settings);
       add_tank_walls(*settled, t, lid_level, slot_bottom, slot_top);
       settled->restore_state(std::move(state));
+      // The growth's last forces had no gravity and, with its contacts between fixed bodies
+      // skipped, left those out of the lower lifts' resultants: the settling starts from forces
+      // evaluated afresh.
+      settled->initialise_forces_at_next_step();
       // The growth ran at the step its grains' starting sizes allowed (a fraction of their final
       // ones, so a lighter body and a shorter critical step); grown, they allow a longer one.
       // Without this the settling and the pull-out after the fill ran at 0.61 of the critical

@@ -2,6 +2,7 @@
 // wall), the stress servo of a wall, bit-for-bit reproducibility across thread counts, and the
 // refusal of bad input.
 #include "dem/dem_system.h"
+#include "dem/measurements.h"
 #include "dem/sample_preparation.h"
 
 #include <gtest/gtest.h>
@@ -458,6 +459,103 @@ TEST(Threads, OneAndTwoThreadsBitForBit)
   EXPECT_GT(one.energy().viscous_dissipated, 0.0);
   EXPECT_GT(one.energy().friction_dissipated, 0.0);
   EXPECT_GT(one.n_neighbour_rebuilds(), 5u);
+}
+
+// A tank's settled lifts are fixed while the next one grows (tank_filling.cc). Skipping the
+// contacts between two fixed bodies at rest (DemSystem::set_skip_contacts_between_fixed_bodies),
+// and the placing of their discs, must change nothing that a free body sees: the same deposition
+// with its lower half fixed, run with and without the skip, gives every free body the same bits,
+// and every contact (the skipped ones' forces kept over list rebuilds) the same force, so that
+// the unbalanced-force ratio REDF reads is the same too.
+TEST(FixedBodies, SkippingTheirContactsChangesNoFreeBody)
+{
+  DemSystem plain = deposition(2), skipping = deposition(2);
+  for (int k = 0; k < 200; ++k)
+    {
+      plain.step();
+      skipping.step();
+    }
+  std::size_t n_fixed = 0;
+  for (DemSystem *system : {&plain, &skipping})
+    {
+      ParticleSet &p = system->particles();
+      n_fixed = 0;
+      for (std::size_t b = 0; b < p.n_bodies(); ++b)
+        if (p.y[b] < 0.5 * (*std::max_element(p.y.begin(), p.y.end())))
+          {
+            p.fix_body(b);
+            ++n_fixed;
+          }
+    }
+  skipping.set_skip_contacts_between_fixed_bodies(true);
+  const std::uint64_t rebuilds_before = skipping.n_neighbour_rebuilds();
+  for (int k = 0; k < 300; ++k)
+    {
+      plain.step();
+      skipping.step();
+    }
+  const ParticleSet &a = plain.particles(), &b = skipping.particles();
+  std::size_t n_free = 0;
+  for (std::size_t k = 0; k < a.n_bodies(); ++k)
+    if (a.inverse_mass[k] > 0.0)
+      {
+        ++n_free;
+        ASSERT_EQ(a.x[k], b.x[k]) << k;
+        ASSERT_EQ(a.y[k], b.y[k]) << k;
+        ASSERT_EQ(a.rotation[k], b.rotation[k]) << k;
+        ASSERT_EQ(a.vx[k], b.vx[k]) << k;
+        ASSERT_EQ(a.omega[k], b.omega[k]) << k;
+        ASSERT_EQ(a.fx[k], b.fx[k]) << k;
+        ASSERT_EQ(a.fy[k], b.fy[k]) << k;
+        ASSERT_EQ(a.torque[k], b.torque[k]) << k;
+      }
+  EXPECT_EQ(a.disc_x, b.disc_x);
+  EXPECT_EQ(a.disc_y, b.disc_y);
+  EXPECT_EQ(plain.pair_contacts().disc_i, skipping.pair_contacts().disc_i);
+  EXPECT_EQ(plain.pair_contacts().force_x, skipping.pair_contacts().force_x);
+  EXPECT_EQ(plain.pair_contacts().force_y, skipping.pair_contacts().force_y);
+  EXPECT_EQ(plain.pair_contacts().elastic_normal_force, skipping.pair_contacts().elastic_normal_force);
+  EXPECT_EQ(unbalanced_force_ratio(plain), unbalanced_force_ratio(skipping));
+  EXPECT_EQ(plain.energy().friction_dissipated, skipping.energy().friction_dissipated);
+  EXPECT_EQ(plain.energy().elastic, skipping.energy().elastic);
+  // What the test claims was exercised: about half the bodies fixed and touching each other,
+  // the other half still moving, contacts between fixed bodies, and list rebuilds while they
+  // were skipped.
+  EXPECT_GT(n_fixed, 1000u);
+  EXPECT_GT(n_free, 1000u);
+  std::size_t fixed_pairs_touching = 0;
+  const PairContacts &c = skipping.pair_contacts();
+  for (std::size_t q = 0; q < c.size(); ++q)
+    fixed_pairs_touching += c.state[q].touching && b.inverse_mass[b.disc_body[c.disc_i[q]]] == 0.0 &&
+                            b.inverse_mass[b.disc_body[c.disc_j[q]]] == 0.0;
+  EXPECT_GT(fixed_pairs_touching, 100u); // 151 when written
+  EXPECT_GT(skipping.n_neighbour_rebuilds(), rebuilds_before);
+}
+
+// Radius expansion of the bodies from one on (a lift over the settled ones): those below keep
+// every bit of their sizes, masses and discs; the grown ones are what scaling them all gives.
+TEST(FixedBodies, ScalingFromABodyOnLeavesTheOnesBelow)
+{
+  ParticleSet all = grid_sample(6, 5, 0.1, 3, 11);
+  ParticleSet upper = all;
+  const std::size_t first = 13;
+  all.scale_sizes(1.07);
+  ParticleSet before = upper;
+  upper.scale_sizes(1.07, first);
+  for (std::size_t b = 0; b < upper.n_bodies(); ++b)
+    {
+      const ParticleSet &expected = b < first ? before : all;
+      EXPECT_EQ(upper.mass[b], expected.mass[b]) << b;
+      EXPECT_EQ(upper.inertia[b], expected.inertia[b]) << b;
+      EXPECT_EQ(upper.inverse_mass[b], expected.inverse_mass[b]) << b;
+      for (std::uint32_t d = upper.first_disc[b]; d < upper.first_disc[b] + upper.n_discs[b]; ++d)
+        {
+          EXPECT_EQ(upper.disc_radius[d], expected.disc_radius[d]) << b;
+          EXPECT_EQ(upper.disc_x[d], expected.disc_x[d]) << b;
+          EXPECT_EQ(upper.disc_y[d], expected.disc_y[d]) << b;
+        }
+    }
+  EXPECT_NE(upper.disc_radius[upper.first_disc[first]], before.disc_radius[before.first_disc[first]]);
 }
 
 // The same with single discs only, the case whose discs are placed in the bodies' first pass

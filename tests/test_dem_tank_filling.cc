@@ -1,6 +1,7 @@
 // Layer-by-layer filling of a tank under gravity (REDF per layer): each layer's slab reaches its
 // target porosity, the fill ends in static equilibrium and the base carries the weight of the soil.
 #include "dem/measurements.h"
+#include "dem/sample_preparation.h"
 #include "dem/tank_filling.h"
 
 #include <gtest/gtest.h>
@@ -95,6 +96,46 @@ TEST(TankFilling, LayersAtTargetPorosityInEquilibriumUnderGravity)
   EXPECT_LT(highest, 1.005 * spec.height);
   std::cout << "tank: weight " << weight << " N/m, base force " << base_force << " N/m, unbalanced ratio "
             << unbalanced_force_ratio(system) << ", top of the fill " << highest << " m\n";
+}
+
+// A lift with the porosity of the one below starts its growth one REDF step above the friction
+// that lift ended at (TankFillingSpec::later_lifts_start_near_the_lift_below): the drops from the
+// material's friction down to it are not made again. Two lifts of the small tank at porosity
+// 0.205 and a 20 deg material, filled both ways: the second lift ends at most one step above the
+// first's friction, at its porosity, in fewer growth steps, and the fill is in equilibrium with
+// the base carrying its weight. (Measured: this thin top lift, under its lid, goes on down to
+// 2.2 deg from the first's 7.0, in 85,000 growth steps against 182,000; the lifts of the
+// 6,000-cluster wrap-around tank all end at 4.02 deg, and the later ones take a tenth.)
+TEST(TankFilling, LaterLiftsStartNearTheFrictionOfTheLiftBelow)
+{
+  TankFillingSpec spec = small_tank();
+  spec.height = 0.09;
+  spec.n_layers = 2;
+  spec.n_particles = 200;
+  spec.layer_porosities = {0.205, 0.205};
+  spec.particle_contact.friction_angle_deg = 20.0;
+  spec.later_lifts_start_near_the_lift_below = false;
+  const FilledTank from_the_top = fill_tank_in_layers(spec);
+  spec.later_lifts_start_near_the_lift_below = true;
+  const FilledTank near_below = fill_tank_in_layers(spec);
+  const TankLayer &first = near_below.layers[0], &second = near_below.layers[1];
+  // The first lift is made as before; it needed drops, or the test shows nothing.
+  EXPECT_EQ(first.n_growth_steps, from_the_top.layers[0].n_growth_steps);
+  EXPECT_EQ(first.growth_friction_deg, from_the_top.layers[0].growth_friction_deg);
+  EXPECT_LT(first.growth_friction_deg, 0.5 * spec.particle_contact.friction_angle_deg);
+  EXPECT_LE(second.growth_friction_deg, first.growth_friction_deg / redf_friction_drop * (1.0 + 1e-12));
+  EXPECT_LT(second.n_growth_steps, 0.6 * from_the_top.layers[1].n_growth_steps);
+  for (const TankLayer &layer : near_below.layers)
+    EXPECT_NEAR(layer.porosity, layer.target_porosity, 2.0 * spec.porosity_tolerance);
+  const DemSystem &system = near_below.system;
+  EXPECT_LT(unbalanced_force_ratio(system), spec.equilibrium_unbalanced_ratio);
+  double weight = 0.0;
+  for (std::size_t b = 0; b < system.particles().n_bodies(); ++b)
+    weight += system.particles().mass[b] * spec.gravity;
+  EXPECT_NEAR(-system.walls()[near_below.walls.base].force_from_particles.y(), weight, 0.01 * weight);
+  std::cout << "second lift: growth friction " << second.growth_friction_deg << " deg (first "
+            << first.growth_friction_deg << "), " << second.n_growth_steps << " growth steps against "
+            << from_the_top.layers[1].n_growth_steps << " from the material's friction\n";
 }
 
 // The slab porosity cuts discs exactly: a disc of radius r centred on the slab's bottom edge
