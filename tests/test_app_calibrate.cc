@@ -3,6 +3,7 @@
 // factor 2 away, the known parameters are recovered, the fragment parses and reproduces the
 // run; remake mode is `geohybrid biaxial`; out-of-reach targets and bad input are refused.
 #include "apps/biaxial_command.h"
+#include "apps/summary.h"
 #include "apps/calibrate_command.h"
 #include "apps/contact_parameters.h"
 #include "temporary_directory.h"
@@ -78,14 +79,12 @@ std::vector<std::vector<double>> read_rows(const fs::path &file)
   return rows;
 }
 
-/// A number of a flat summary.json.
+/// A number of summary.json (NaN if absent or null).
 double summary_value(const fs::path &file, const std::string &key)
 {
-  const std::string text = read_text(file);
-  const auto at = text.find("\"" + key + "\": ");
-  if (at == std::string::npos)
-    return std::nan("");
-  return std::stod(text.substr(at + key.size() + 4));
+  const nlohmann::json summary = geohybrid::apps::read_summary(file);
+  const auto found = summary.find(key);
+  return found == summary.end() || !found->is_number() ? std::nan("") : found->get<double>();
 }
 
 // calibration.csv columns
