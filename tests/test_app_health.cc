@@ -6,6 +6,7 @@
 #include "apps/dem_command.h"
 #include "apps/pull_watch.h"
 #include "apps/pullout_command.h"
+#include "apps/pullout_seeds.h"
 #include "apps/run_health.h"
 #include "apps/summary.h"
 #include "dem/checkpoint.h"
@@ -291,7 +292,8 @@ TEST(RunHealth, PullWatchComparesTheKineticEnergyWithTheWork)
 // 2066 kg/m3: I = 0.0824, above 0.06) it still runs to its end, and says what the watches found:
 // the rate, the sheet's ramp force (its masses scaled by 69 for the soft grains' step: 33 % of
 // the friction limit at 50 mm/s, 1.3 % at 10), the sheet's inertia (22 % of T_max in the ramp's
-// interval) and the kinetic energy (11.5 % of the work): a pull that is not quasi-static.
+// interval) and the kinetic energy (11.5 % of the work): a pull that is not quasi-static. Run as
+// an ensemble of one seed, whose summary gathers its seeds' warnings.
 TEST(RunHealth, APossibleButFastPullFinishesWithWarnings)
 {
   TemporaryDirectory d("health_warning");
@@ -299,11 +301,17 @@ TEST(RunHealth, APossibleButFastPullFinishesWithWarnings)
   ASSERT_EQ(apps::run_pullout_command(input, false), 0);
   EXPECT_TRUE(apps::read_summary(d.path / "out" / "summary.json").at("warnings").empty());
 
-  ASSERT_EQ(apps::run_pullout_command(input, false, {{"Pull/rate", "0.05"}}), 0);
-  const nlohmann::json warnings = apps::read_summary(d.path / "out" / "summary.json").at("warnings");
+  const fs::path fast = d.path / "fast.prm";
+  std::ofstream(fast) << "include " << input << "\nset output directory = " << (d.path / "fast").string()
+                      << "\nsubsection Pull\n  set rate = 0.05\nend\n";
+  ASSERT_EQ(apps::run_pullout_seeds(fast.string(), 1), 0);
+  const nlohmann::json warnings = apps::read_summary(d.path / "fast" / "seed_3" / "summary.json").at("warnings");
   ASSERT_EQ(warnings.size(), 4u) << warnings;
   EXPECT_TRUE(contains(warnings[0], "'Pull/rate' = 0.05 m/s gives an inertial number of 0.0824")) << warnings[0];
   EXPECT_TRUE(contains(warnings[1], "takes 22.49 N/m to follow the clamp's ramp, 32.9 %")) << warnings[1];
   EXPECT_TRUE(contains(warnings[2], "the sheet's inertia took up to 22.1 % of T_max")) << warnings[2];
   EXPECT_TRUE(contains(warnings[3], "kinetic energy reached 11.5 % of the clamp's work")) << warnings[3];
+  const nlohmann::json ensemble = apps::read_summary(d.path / "fast" / "summary.json").at("warnings");
+  ASSERT_EQ(ensemble.size(), 4u) << ensemble;
+  EXPECT_EQ(ensemble[3].get<std::string>(), "seed_3: " + warnings[3].get<std::string>());
 }
