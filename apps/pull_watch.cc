@@ -60,16 +60,16 @@ void PullWatch::store(dem::CommandState &command) const
 void PullWatch::check(const dem::PullPoint &p, const dem::DemSystem &system)
 {
   const double u = p.head_displacement, T = p.head_tension;
-  const std::string at = "at " + number(1e3 * u, 4) + " mm of the pull";
+  const auto at = [u] { return "at " + number(1e3 * u, 4) + " mm of the pull"; }; // only to throw
   if (!std::isfinite(T) || !std::isfinite(u))
-    throw RunWentWrong(at + " the head tension is not finite (" + number(T, 4) +
+    throw RunWentWrong(at() + " the head tension is not finite (" + number(T, 4) +
                        " N/m): the pull diverged; likely 'Pull/rate' far too fast or 'Sheet/axial stiffness' too high "
                        "for the time step");
   if (have_last_)
     {
       const double du = u - last_u_;
       if (du > record_step_factor * setup_.record_interval)
-        throw RunWentWrong(at + " the head moved " + number(1e3 * du, 4) + " mm since the last point, where " +
+        throw RunWentWrong(at() + " the head moved " + number(1e3 * du, 4) + " mm since the last point, where " +
                            "'Pull/record interval' asks " + number(1e3 * setup_.record_interval, 4) +
                            " mm: the clamp moves farther in one time step than the curve's resolution; lower 'Pull/rate'");
       work_ += T * du; // T is the mean over the interval: its work, to the rounding of the steps
@@ -84,7 +84,7 @@ void PullWatch::check(const dem::PullPoint &p, const dem::DemSystem &system)
         grains_outside(system, 0.0, *setup_.tank_length, 0.0, std::numeric_limits<double>::infinity(),
                        std::numeric_limits<double>::infinity());
       if (out.count > 0)
-        throw RunWentWrong(at + " " + std::to_string(out.count) + " grains have left the tank (grain " +
+        throw RunWentWrong(at() + " " + std::to_string(out.count) + " grains have left the tank (grain " +
                            std::to_string(out.first_id) + " at (" + number(out.first_x, 4) + ", " +
                            number(out.first_y, 4) + ") m): they crossed a wall in a time step; likely 'Pull/rate' far "
                            "too fast, or 'Soil/Particle contact' stiffnesses too low for the stress");
@@ -95,7 +95,7 @@ void PullWatch::check(const dem::PullPoint &p, const dem::DemSystem &system)
     {
       const double share = std::abs(p.parts.inertia) / T_max_;
       if (share > fatal_inertia_share)
-        throw RunWentWrong(at + " the sheet's inertia takes " + number(100.0 * share, 3) + " % of the head tension (" +
+        throw RunWentWrong(at() + " the sheet's inertia takes " + number(100.0 * share, 3) + " % of the head tension (" +
                            number(p.parts.inertia, 4) + " of " + number(T_max_, 4) +
                            " N/m): the mass-scaled sheet, not the soil, sets the answer; lower 'Sheet/axial stiffness' "
                            "(its masses are scaled with it) or 'Pull/rate'");
@@ -110,7 +110,7 @@ void PullWatch::check(const dem::PullPoint &p, const dem::DemSystem &system)
     {
       const double share = (pull_kinetic_energy(system) - kinetic_start_) / work_;
       if (share > fatal_kinetic_share)
-        throw RunWentWrong(at + " the grains' and the sheet's kinetic energy is " + number(100.0 * share, 3) +
+        throw RunWentWrong(at() + " the grains' and the sheet's kinetic energy is " + number(100.0 * share, 3) +
                            " % of the clamp's work: the pull flings the soil instead of shearing it; lower "
                            "'Pull/rate'");
       if (share > worst_kinetic_)

@@ -144,22 +144,24 @@ DemRunWatch::DemRunWatch(double width, double height, bool top_wall)
 
 void DemRunWatch::check(const dem::DemSystem &system, const dem::EnergyBudget &e, double balance_error)
 {
-  const std::string when = "at t = " + number(system.time(), 6) + " s (step " + std::to_string(system.step_count()) + ")";
+  const auto when = [&system] { // only to throw
+    return "at t = " + number(system.time(), 6) + " s (step " + std::to_string(system.step_count()) + ")";
+  };
   if (!std::isfinite(e.kinetic) || !std::isfinite(e.gravitational) || !std::isfinite(e.elastic) ||
       !std::isfinite(balance_error))
-    throw RunWentWrong(when + " the energy is not finite (kinetic " + number(e.kinetic, 4) + " J/m, gravitational " +
+    throw RunWentWrong(when() + " the energy is not finite (kinetic " + number(e.kinetic, 4) + " J/m, gravitational " +
                        number(e.gravitational, 4) + " J/m): velocities or forces beyond any physics; likely "
                        "'Simulation/gravity', the CSV file's velocities ('Particles/csv file') or 'Simulation/time step'");
   const GrainsOutside out =
     grains_outside(system, 0.0, width_, 0.0, top_wall_ ? height_ : std::numeric_limits<double>::infinity(), height_);
   if (out.count > 0)
-    throw RunWentWrong(when + " " + std::to_string(out.count) + " of " + std::to_string(system.particles().n_bodies()) +
+    throw RunWentWrong(when() + " " + std::to_string(out.count) + " of " + std::to_string(system.particles().n_bodies()) +
                        " particles have left the box (particle " + std::to_string(out.first_id) + " at (" +
                        number(out.first_x, 4) + ", " + number(out.first_y, 4) +
                        ") m): they crossed a wall in a time step; likely 'Simulation/gravity' or the CSV file's "
                        "velocities ('Particles/csv file') far too high, or 'Simulation/time step' too large");
   if (std::abs(balance_error) > fatal_balance_error)
-    throw RunWentWrong(when + " the energy balance's error is " + number(balance_error, 4) +
+    throw RunWentWrong(when() + " the energy balance's error is " + number(balance_error, 4) +
                        " of the budget's largest term: energy is created or lost by the integration, not the physics; "
                        "lower 'Simulation/time step' (or 'time step safety factor')");
   if (std::abs(balance_error) > std::abs(worst_error_))
