@@ -1,6 +1,7 @@
 #include "compare_command.h"
 
 #include "apps/plot.h"
+#include "apps/summary.h"
 
 #include <cstdlib>
 #include <cstring>
@@ -75,30 +76,6 @@ std::vector<std::array<double, 2>> read_curve(const fs::path &directory)
   return rows;
 }
 
-/// The literal after "key": in a flat JSON object (as Summary writes it), or nothing.
-bool json_literal(const std::string &text, const std::string &key, std::string &literal)
-{
-  const auto at = text.find("\"" + key + "\"");
-  if (at == std::string::npos)
-    return false;
-  const auto colon = text.find(':', at + key.size() + 2);
-  if (colon == std::string::npos)
-    return false;
-  auto start = text.find_first_not_of(" \t\r\n", colon + 1);
-  if (start == std::string::npos)
-    return false;
-  if (text[start] == '"')
-    {
-      const auto close = text.find('"', start + 1);
-      if (close == std::string::npos)
-        return false;
-      literal = text.substr(start + 1, close - start - 1);
-      return true;
-    }
-  const auto end = text.find_first_of(",}\n", start);
-  literal = trimmed(text.substr(start, end == std::string::npos ? std::string::npos : end - start));
-  return true;
-}
 } // namespace
 
 PulloutRunRecord read_pullout_run(const fs::path &directory)
@@ -111,19 +88,31 @@ PulloutRunRecord read_pullout_run(const fs::path &directory)
   record.n_points = record.curve.size();
 
   const fs::path summary = directory / summary_file;
-  std::ifstream in(summary);
-  if (!in)
+  if (!fs::exists(summary))
     throw std::runtime_error("compare: result directory '" + directory.string() + "' has no " + summary_file +
                              " (an unfinished run?)");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string tension;
-  if (!json_literal(text.str(), "mode", record.mode) || record.mode.empty())
-    throw std::runtime_error("compare: " + summary.string() + " (result directory '" + directory.string() +
-                             "') has no \"mode\"");
-  if (!json_literal(text.str(), "T_max_kN_per_m", tension) || !parse_number(tension, record.max_head_tension_kN))
-    throw std::runtime_error("compare: " + summary.string() + " (result directory '" + directory.string() +
-                             "') has no number \"T_max_kN_per_m\"");
+  const std::string where = "compare: " + summary.string() + " (result directory '" + directory.string() + "')";
+  nlohmann::json json;
+  try
+    {
+      json = read_summary(summary);
+    }
+  catch (const std::runtime_error &e)
+    {
+      throw std::runtime_error(where + ": " + e.what());
+    }
+  const auto mode = json.is_object() ? json.find("mode") : json.end();
+  if (mode == json.end() || !mode->is_string() || mode->get<std::string>().empty())
+    throw std::runtime_error(where + " has no \"mode\"");
+  record.mode = mode->get<std::string>();
+  const auto tension = json.find("T_max_kN_per_m");
+  if (tension == json.end() || !tension->is_number())
+    throw std::runtime_error(where + " has no number \"T_max_kN_per_m\"");
+  record.max_head_tension_kN = tension->get<double>();
+  if (const auto warnings = json.find("warnings"); warnings != json.end() && warnings->is_array())
+    for (const nlohmann::json &w : *warnings)
+      if (w.is_string())
+        record.warnings.push_back(w.get<std::string>());
   return record;
 }
 

@@ -19,6 +19,7 @@ struct PulloutRunRecord
   std::filesystem::path directory;
   std::string mode;                 ///< summary.json "mode": dem, fem or hybrid
   double max_head_tension_kN = 0.0; ///< summary.json "T_max_kN_per_m" [kN/m]
+  std::vector<std::string> warnings; ///< summary.json "warnings" (none in a summary older than them)
   std::size_t n_points = 0;         ///< rows of pullout_curve.csv
   /// Its first two columns, row by row: head displacement [m], head tension [kN/m].
   std::vector<std::array<double, 2>> curve;

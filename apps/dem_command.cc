@@ -14,6 +14,7 @@
 #include "plot.h"
 #include "resume_check.h"
 #include "run_directory.h"
+#include "run_health.h"
 
 #include "dem/checkpoint.h"
 #include "dem/dem_system.h"
@@ -251,6 +252,8 @@ int run_dem_command(const std::string &input_file, bool resume)
       }
   }();
   const std::vector<std::size_t> history = parse_history_ids(history_text, system.particles().n_bodies());
+  if (!resume)
+    check_particle_speeds(system, where); // grains the time step cannot follow (run_health.h)
 
   // The energy at t = 0 (the reference of the energy balance), also when resuming: the system
   // is built from the same input as the run that wrote the checkpoint.
@@ -326,11 +329,16 @@ int run_dem_command(const std::string &input_file, bool resume)
   dem::SnapshotWriter snapshots = resume ? dem::SnapshotWriter::resume(out, "particles", *keep_until(snapshot_every))
                                          : dem::SnapshotWriter(out, "particles");
 
+  // The run's watch (run_health.h), at each row before it is written: a row of a run gone wrong
+  // is not written, the run stops without summary.json.
+  DemRunWatch watch(width, height, top_wall);
   const auto write_rows = [&] {
     const dem::EnergyBudget e = system.energy();
+    const double balance_error = dem::energy_balance_error(energy_start, e);
+    watch.check(system, e, balance_error);
     series << system.time() << ',' << e.kinetic << ',' << e.gravitational << ',' << e.elastic << ','
            << e.friction_dissipated << ',' << e.viscous_dissipated << ',' << e.local_damping_dissipated << ','
-           << e.boundary_work << ',' << dem::energy_balance_error(energy_start, e) << ','
+           << e.boundary_work << ',' << balance_error << ','
            << dem::coordination_number(system) << ',' << dem::unbalanced_force_ratio(system) << ','
            << system.n_touching_pairs() << ',' << system.n_broken_bonds();
     for (const dem::Wall &w : system.walls())
@@ -443,6 +451,7 @@ int run_dem_command(const std::string &input_file, bool resume)
   summary.set("stress_yy_bulk_Pa", stress[1]);
   summary.set("stress_xy_bulk_Pa", stress[2]);
   summary.set("floor_normal_stress_Pa", system.walls()[0].normal_stress());
+  report_warnings(watch.warnings(), "geohybrid dem", summary, std::cerr);
   const std::filesystem::path series_csv = out / "time_series.csv";
   plot_png(out / "time_series.png", "DEM run: energy and contacts",
            {PlotPanel{"time [s]", "kinetic energy [J/m]", {PlotSeries{series_csv, 1, 2, "kinetic"}}},

@@ -36,7 +36,9 @@
 #include "pullout_input.h"
 #include "pullout_forces_output.h"
 #include "pullout_output.h"
+#include "pull_watch.h"
 #include "resume_check.h"
+#include "run_health.h"
 #include "run_directory.h"
 
 #include <deal.II/base/mpi.h>
@@ -316,6 +318,11 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool
     throw std::invalid_argument(where + ": 'Pull/record interval' = " + number(in.pull.record_interval) +
                                 " m is longer than 'Pull/final displacement' = " + number(in.pull.final_displacement) +
                                 " m");
+  // The pull's inertial number with the grains' density (the continuum's in fem mode) at gamma H.
+  const double gravity = 9.81, density = dem_mode ? dem::solid_density_for_unit_weight(in.tank.unit_weight, f.target_porosity, gravity)
+                                                  : in.tank.unit_weight / gravity;
+  if (auto warning = check_pull_rate(in.pull.rate, density, in.tank.unit_weight * g.cover, where))
+    in.warnings.push_back(*warning);
   return in;
 }
 
@@ -450,6 +457,13 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   else
     pull.emplace(system, in.pull);
   const double u_first = pull->head_displacement();
+  // The sheet's scaled mass is known now, with the grains' time step: refused if its inertia
+  // would set the answer (run_health.h). The watch looks at every point of the curve.
+  std::vector<std::string> warnings = in.warnings;
+  if (auto w = check_dem_sheet_inertia(system.sheets()[0], in.pull, system.time_step(), 2.0 * one_face, where))
+    warnings.push_back(*w);
+  const PullWatch::Setup watch_setup{in.pull.record_interval, in.pull.ramp_displacement, g.tank_length, true};
+  PullWatch watch(watch_setup, system, pulled ? &saved : nullptr);
   std::cout << "pullout: fill steps per layer (growth + settling)";
   for (const dem::TankLayer &layer : tank.tank.layers)
     std::cout << ' ' << layer.n_growth_steps << '+' << layer.n_settling_steps;
@@ -461,6 +475,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
             << " s); the pull takes " << pull->expected_steps() << " steps" << std::endl;
   ProgressReport progress("pulling", in.pull.final_displacement - u_first);
   const auto record = [&](const dem::PullPoint &p, const dem::DemSystem &s) {
+    watch.check(p, s); // a point of a pull gone wrong is not written
     add_dem_sheet_point(*output, tank, s.sheets()[0], p);
     forces->add_point(p, s);
     fields->record(p.head_displacement, s);
@@ -473,6 +488,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
     output->store(c);
     forces->store(c);
     fields->store(c);
+    watch.store(c);
     dem::write_checkpoint(system.export_state(), c, checkpoint_file);
   };
   if (!pulled)
@@ -520,6 +536,9 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   summary.set("n_fill_steps", fill_steps);
   summary.set("wall_time_s", wall_time);
   summary.set("parameters_hash", pullout_parameters_hash(prm));
+  const std::vector<std::string> found = watch.warnings();
+  warnings.insert(warnings.end(), found.begin(), found.end());
+  report_warnings(warnings, "geohybrid pullout", summary, std::cerr);
   summary.write(out / "summary.json");
   std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m (" << number(T_max * g.sheet_width / 1e3, 4)
             << " kN for b = " << number(g.sheet_width, 3) << " m) at " << number(1e3 * u_at_T_max, 3) << " mm"

@@ -2,6 +2,7 @@
 
 #include "apps/parameters_hash.h"
 #include "interrupt.h"
+#include "run_health.h"
 
 #include "apps/pullout_output.h"
 #include "apps/run_directory.h"
@@ -370,6 +371,11 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
     result = explicit_problem->run([&](const fem::PulloutCurvePoint &point, const fem::EmbeddedSheet &sheet) {
       record(point, sheet.sheet(), sheet.displacements());
     });
+  // The answer against the interface's limit (apps/run_health.h), on every rank: each holds the
+  // result, so all stop together.
+  std::vector<std::string> warnings = in.warnings;
+  if (auto w = check_fem_tension(result.max_head_tension, result.geostatic_interface_limit))
+    warnings.push_back(*w);
 
   on_rank_zero(comm, [&] {
     progress->finish();
@@ -410,6 +416,7 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
     summary.set("n_mpi_ranks", static_cast<double>(n_ranks));
     summary.set("wall_time_s", wall_time);
     summary.set("parameters_hash", pullout_parameters_hash(prm));
+    report_warnings(warnings, "geohybrid pullout", summary, std::cerr);
     summary.write(out / "summary.json");
     std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m ("
               << number(T_max * g.sheet_width / 1e3, 4) << " kN for b = " << number(g.sheet_width, 3) << " m) at "

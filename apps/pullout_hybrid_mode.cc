@@ -4,7 +4,9 @@
 #include "apps/pullout_fem_mode.h"
 #include "apps/parameters_hash.h"
 #include "apps/pullout_output.h"
+#include "apps/pull_watch.h"
 #include "apps/resume_check.h"
+#include "apps/run_health.h"
 #include "apps/run_directory.h"
 
 #include "coupling/hybrid_checkpoint.h"
@@ -436,8 +438,18 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   else
     output.emplace(out, g.sheet_width, in.profiles_at);
   const double u_first = pull->head_displacement();
+  // The sheet's inertia checked as in dem mode, then the watch of the pull (apps/pull_watch.h):
+  // the box's grains and their kinetic energy are not looked at (deformable edges, a continuum
+  // that moves too).
+  std::vector<std::string> warnings = in.warnings;
+  if (auto w = check_dem_sheet_inertia(system.sheets()[0], in.pull, system.time_step(),
+                                       2.0 * before.top_face * g.anchorage_length * mu, where))
+    warnings.push_back(*w);
+  const PullWatch::Setup watch_setup{in.pull.record_interval, in.pull.ramp_displacement, std::nullopt, false};
+  PullWatch watch(watch_setup, system, resumed ? &saved : nullptr);
   ProgressReport progress("pulling", in.pull.final_displacement - u_first);
   const auto record = [&](const dem::PullPoint &p) {
+    watch.check(p, system);
     add_dem_sheet_point(*output, tank, system.sheets()[0], p, dem::Vec2(box.x0, box.y0));
     diagnostics.add(p, *hybrid);
     progress.update(p.head_displacement - u_first);
@@ -454,6 +466,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
     dem::store_pull_progress(pull->progress(), c);
     output->store(c);
     diagnostics.store(c);
+    watch.store(c);
     coupling::store_continuum_state(hybrid->continuum_state(), c);
     c.counts["hybrid_pull_steps"] = {hybrid->pull_steps()};
     c.texts = input.texts;
@@ -508,6 +521,9 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   summary.set("set_up_wall_time_s", set_up_time);
   summary.set("wall_time_s", wall_time);
   summary.set("parameters_hash", pullout_parameters_hash(prm));
+  const std::vector<std::string> found = watch.warnings();
+  warnings.insert(warnings.end(), found.begin(), found.end());
+  report_warnings(warnings, "geohybrid pullout", summary, std::cerr);
   summary.write(out / "summary.json");
   std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m ("
             << number(T_max * g.sheet_width / 1e3, 4) << " kN for b = " << number(g.sheet_width, 3) << " m) at "

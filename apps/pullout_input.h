@@ -20,6 +20,8 @@ struct PullOutInput
   std::vector<double> fields_at; ///< head displacements of the field outputs (dem mode) [m]
   std::optional<double> experimental_T_max; ///< [N/m]
   double stress_band = 0.05;
+  /// Quality warnings found in the input (apps/run_health.h), for the summary's "warnings".
+  std::vector<std::string> warnings;
 };
 
 /// Reads the sections every mode uses (and those of the DEM, which fem mode leaves unused) and

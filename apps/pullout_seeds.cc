@@ -204,6 +204,11 @@ int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm commu
   summary.set("n_particles", static_cast<double>(n_particles));
   summary.set("n_ranks", static_cast<double>(n_ranks));
   summary.set("wall_time_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count());
+  std::vector<std::string> warnings; // each seed's, as its run printed them
+  for (const PulloutRunRecord &run : runs)
+    for (const std::string &w : run.warnings)
+      warnings.push_back(run.directory.filename().string() + ": " + w);
+  summary.set("warnings", warnings);
   summary.write(out / "summary.json");
   std::cout << "geohybrid pullout: T_max = " << t.mean << " +/- " << t.std << " kN/m over seeds " << seeds
             << "\nresults in " << out.string() << '\n';

@@ -264,55 +264,6 @@ bool WallClockInterval::due()
   return true;
 }
 
-void Summary::set(const std::string &key, double value)
-{
-  std::ostringstream s;
-  if (std::isfinite(value))
-    s << std::setprecision(12) << value;
-  else
-    s << "null";
-  entries_[key] = s.str();
-}
-
-void Summary::set(const std::string &key, const std::vector<double> &values)
-{
-  std::string literal = "[";
-  for (std::size_t k = 0; k < values.size(); ++k)
-    {
-      set(key, values[k]); // one number as set() writes it (null if not finite)
-      literal += (k > 0 ? ", " : "") + entries_[key];
-    }
-  entries_[key] = literal + "]";
-}
-
-void Summary::set(const std::string &key, const std::string &value)
-{
-  std::string escaped = "\"";
-  for (char c : value)
-    {
-      if (c == '"' || c == '\\')
-        escaped += '\\';
-      escaped += c;
-    }
-  entries_[key] = escaped + "\"";
-}
-
-void Summary::write(const std::filesystem::path &file) const
-{
-  const std::filesystem::path temporary = file.string() + ".tmp";
-  {
-    std::ofstream out(temporary);
-    out << "{\n";
-    std::size_t k = 0;
-    for (const auto &[key, literal] : entries_)
-      out << "  \"" << key << "\": " << literal << (++k < entries_.size() ? ",\n" : "\n");
-    out << "}\n";
-    if (!out)
-      throw std::runtime_error("cannot write " + temporary.string());
-  }
-  std::filesystem::rename(temporary, file);
-}
-
 ProgressReport::ProgressReport(std::string label, double end)
   : label_(std::move(label)), end_(end), terminal_(isatty(fileno(stderr)) != 0),
     start_(std::chrono::steady_clock::now()), last_print_(start_)

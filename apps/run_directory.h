@@ -2,11 +2,12 @@
 // What every run does around its physics: a fresh output directory, the resolved parameter file,
 // a progress report (a bar with ETA on a terminal, plain lines in a log), and a summary written
 // last and atomically, so a directory with summary.json is a finished run.
+#include "apps/summary.h"
+
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -65,21 +66,6 @@ private:
   std::chrono::steady_clock::duration interval_;
   std::chrono::steady_clock::time_point last_;
   bool enabled_;
-};
-
-/// A flat JSON object of numbers, strings and arrays of numbers (each on one line, so that a
-/// line-wise reader such as `geohybrid compare` still finds the other keys), written through a
-/// temporary file and a rename.
-class Summary
-{
-public:
-  void set(const std::string &key, double value);
-  void set(const std::string &key, const std::string &value);
-  void set(const std::string &key, const std::vector<double> &values);
-  void write(const std::filesystem::path &file) const;
-
-private:
-  std::map<std::string, std::string> entries_; // key -> JSON literal
 };
 
 class ProgressReport

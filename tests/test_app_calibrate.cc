@@ -3,6 +3,7 @@
 // factor 2 away, the known parameters are recovered, the fragment parses and reproduces the
 // run; remake mode is `geohybrid biaxial`; out-of-reach targets and bad input are refused.
 #include "apps/biaxial_command.h"
+#include "apps/summary.h"
 #include "apps/calibrate_command.h"
 #include "apps/contact_parameters.h"
 #include "temporary_directory.h"
@@ -78,14 +79,12 @@ std::vector<std::vector<double>> read_rows(const fs::path &file)
   return rows;
 }
 
-/// A number of a flat summary.json.
+/// A number of summary.json (NaN if absent or null).
 double summary_value(const fs::path &file, const std::string &key)
 {
-  const std::string text = read_text(file);
-  const auto at = text.find("\"" + key + "\": ");
-  if (at == std::string::npos)
-    return std::nan("");
-  return std::stod(text.substr(at + key.size() + 4));
+  const nlohmann::json summary = geohybrid::apps::read_summary(file);
+  const auto found = summary.find(key);
+  return found == summary.end() || !found->is_number() ? std::nan("") : found->get<double>();
 }
 
 // calibration.csv columns
@@ -174,7 +173,9 @@ TEST(CalibrateCommand, RecoversKnownParametersAndWritesAFragment)
   const fs::path summary = d.path / "out" / "summary.json";
   EXPECT_EQ(summary_value(summary, "converged"), 1.0);
   EXPECT_EQ(summary_value(summary, "iterations"), static_cast<double>(rows.size()));
-  EXPECT_EQ(summary_value(summary, "peak_friction_angle_deg"), last[peak_friction_angle]);
+  // The summary keeps every digit of the double, calibration.csv 12: equal to 1e-10.
+  EXPECT_NEAR(summary_value(summary, "peak_friction_angle_deg"), last[peak_friction_angle],
+              1e-10 * last[peak_friction_angle]);
   EXPECT_EQ(summary_value(summary, "contact_friction_angle_deg"), soil.friction_angle_deg);
 
   // Same input, same numbers.

@@ -120,3 +120,26 @@ TEST(CompareCommand, BadDirectoriesAreNamed)
   EXPECT_THROW(run_compare_command({"--output", png.string()}), std::runtime_error);
   EXPECT_THROW(run_compare_command({good.string(), "--output"}), std::runtime_error);
 }
+
+// A summary as nlohmann-json writes one, nested and with values across lines (a list of
+// warnings before the keys, the tension on the line after its key): the old line-wise reader took
+// the "mode" inside a warning and found no number after "T_max_kN_per_m":. A summary that is not
+// JSON is refused naming the file.
+TEST(CompareCommand, ReadsANestedSummaryThroughTheJsonLibrary)
+{
+  TemporaryDirectory root("compare_json");
+  const fs::path run = fabricate_run(root.path, "nested", "dem", 41.2);
+  std::ofstream(run / "summary.json")
+    << "{\"warnings\": [\"\\\"mode\\\": \\\"fem\\\" is not what this says\",\n  \"a second one\"],\n"
+       "  \"T_max_kN_per_m\":\n     41.25,\n  \"mode\": \"hybrid\"}\n";
+  const auto record = read_pullout_run(run);
+  EXPECT_EQ(record.mode, "hybrid");
+  EXPECT_EQ(record.max_head_tension_kN, 41.25);
+  ASSERT_EQ(record.warnings.size(), 2u);
+  EXPECT_EQ(record.warnings[1], "a second one");
+
+  std::ofstream(run / "summary.json") << "{\"mode\": \"dem\", \"T_max_kN_per_m\": 41.2,\n"; // cut short
+  const std::string e = error_of({run}, root.path / "out.png");
+  EXPECT_NE(e.find("not valid JSON"), std::string::npos) << e;
+  EXPECT_NE(e.find((run / "summary.json").string()), std::string::npos) << e;
+}

@@ -3,6 +3,7 @@
 // scenarios) for the same input, and within what coupling/README.md documents; the histories are written; bad input is refused
 // naming the entry and the file, with no output directory left behind.
 #include "apps/coupling_test_command.h"
+#include "apps/summary.h"
 #include "coupling/hexagonal_lattice.h"
 #include "temporary_directory.h"
 #include "text_file.h"
@@ -50,11 +51,9 @@ std::string error_of(const fs::path &file)
 
 double summary_number(const fs::path &file, const std::string &key)
 {
-  const std::string s = geohybrid::testing::read_text(file);
-  const auto at = s.find("\"" + key + "\": ");
-  if (at == std::string::npos)
-    return std::nan("");
-  return std::stod(s.substr(at + key.size() + 4));
+  const nlohmann::json summary = geohybrid::apps::read_summary(file);
+  const auto found = summary.find(key);
+  return found == summary.end() || !found->is_number() ? std::nan("") : found->get<double>();
 }
 
 /// The figures the library gives for the input `file` (read by the command's own parser), from
