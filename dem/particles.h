@@ -103,13 +103,7 @@ inline double ParticleSet::place_discs(std::size_t b, const double *reference_x,
       disc_x[d] = x[b] + c * ox - s * oy;
       disc_y[d] = y[b] + s * ox + c * oy;
     }
-  if (reference_x)
-    for (std::uint32_t d = begin; d < end; ++d)
-      {
-        const double dx = disc_x[d] - reference_x[d], dy = disc_y[d] - reference_y[d];
-        max_move2 = std::max(max_move2, dx * dx + dy * dy);
-      }
-  return max_move2;
+  return disc_move2(b, reference_x, reference_y);
 }
 
 inline double ParticleSet::disc_move2(std::size_t b, const double *reference_x, const double *reference_y) const
