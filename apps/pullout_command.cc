@@ -168,6 +168,12 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "above the friction the lift below ended its growth at (a 6,000-cluster wrap-around tank: its later "
                     "lifts in a tenth of the growth steps), or the material's, as the first lift starts");
   prm.declare_entry("seed", "1", Patterns::Integer(0), "Seed of the random fill [-]");
+  prm.declare_entry("lift cache directory", "", Patterns::Anything(),
+                    "dem and hybrid modes: the lifts below the sheet, once grown and settled, are kept in this directory "
+                    "(relative to the working directory) and taken from it by any run that starts them from the same "
+                    "state: the cases of one tank and seed that differ above them (B, D1, the geosynthetic, the "
+                    "interface) share them, with the same numbers bit for bit; empty = none. It steers the run only "
+                    "(not in parameters_hash) [-]");
   prm.leave_subsection();
 
   prm.enter_subsection("Pull");
@@ -267,6 +273,8 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool
   f.equilibrium_unbalanced_ratio = prm.get_double("equilibrium unbalanced ratio");
   f.later_lifts_start_near_the_lift_below = prm.get("growth friction of later lifts") == "near the lift below";
   f.seed = static_cast<std::uint64_t>(prm.get_integer("seed"));
+  f.lift_cache_directory = prm.get("lift cache directory");
+  f.lift_cache_version = numbers_version;
   prm.leave_subsection();
 
   prm.enter_subsection("Pull");
@@ -466,7 +474,7 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   PullWatch watch(watch_setup, system, pulled ? &saved : nullptr);
   std::cout << "pullout: fill steps per layer (growth + settling)";
   for (const dem::TankLayer &layer : tank.tank.layers)
-    std::cout << ' ' << layer.n_growth_steps << '+' << layer.n_settling_steps;
+    std::cout << ' ' << layer.n_growth_steps << '+' << layer.n_settling_steps << (layer.from_cache ? " (kept lift)" : "");
   std::cout << ", lowest growth friction per layer";
   for (const dem::TankLayer &layer : tank.tank.layers)
     std::cout << ' ' << number(layer.growth_friction_deg, 3);
@@ -534,6 +542,12 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   for (const dem::TankLayer &layer : tank.tank.layers)
     fill_steps += static_cast<double>(layer.n_growth_steps + layer.n_settling_steps);
   summary.set("n_fill_steps", fill_steps);
+  // Lifts taken from 'Filling/lift cache directory': their steps were made by an earlier run.
+  double kept_steps = 0.0;
+  for (const dem::TankLayer &layer : tank.tank.layers)
+    if (layer.from_cache)
+      kept_steps += static_cast<double>(layer.n_growth_steps + layer.n_settling_steps);
+  summary.set("n_fill_steps_of_kept_lifts", kept_steps);
   summary.set("wall_time_s", wall_time);
   summary.set("parameters_hash", pullout_parameters_hash(prm));
   const std::vector<std::string> found = watch.warnings();

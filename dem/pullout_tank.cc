@@ -563,6 +563,10 @@ void store_pullout_tank(const PullOutTank &tank, CommandState &c)
                                  l.target_porosity, l.porosity_grown, l.porosity, l.growth_friction_deg,
                                  static_cast<double>(l.n_growth_steps), static_cast<double>(l.n_settling_steps)});
   c.reals["layers"] = layers;
+  std::vector<std::uint64_t> kept;
+  for (const TankLayer &l : f.layers)
+    kept.push_back(l.from_cache ? 1 : 0);
+  c.counts["layers_kept"] = kept; // absent from checkpoints written before the lift cache
   c.reals["sheet_level"] = {tank.sheet_level};
   c.counts["sheet_nodes"] = {tank.lower_part_end, tank.first_node_inside};
   c.counts["final_settling_steps"] = {tank.n_final_settling_steps};
@@ -601,6 +605,12 @@ PullOutTank restore_pullout_tank(DemSystemState state, const DemSettings &settin
       layer.n_growth_steps = static_cast<std::uint64_t>(l[k + 8]);
       layer.n_settling_steps = static_cast<std::uint64_t>(l[k + 9]);
       layers.push_back(layer);
+    }
+  if (c.counts.count("layers_kept"))
+    {
+      const std::vector<std::uint64_t> &kept = c.count("layers_kept", layers.size());
+      for (std::size_t k = 0; k < layers.size(); ++k)
+        layers[k].from_cache = kept[k] != 0;
     }
   const std::size_t n_nodes = system.sheets().empty() ? 0 : system.sheets()[0].n_nodes();
   if (n_nodes == 0)

@@ -1,5 +1,6 @@
 #include "tank_filling.h"
 
+#include "lift_cache.h"
 #include "measurements.h"
 #include "sample_preparation.h"
 
@@ -553,109 +554,129 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
         move_new_bodies_off_sheets(particles, first_body, laid, t.n_threads);
       layer.first_body = first_body;
       layer.n_bodies = particles.n_bodies() - first_body;
-      // While this layer grows, the grains below its slab are fixed (a compacted lift is nearly
-      // rigid under the next one): their share of the slab is constant. The grains of the layer
-      // below that stand in the slab (its band) stay free, so that they can rearrange with the
-      // new grains, as the top of a lift does when the next one is compacted on it.
-      double fixed_solid = 0.0;
-      std::vector<std::size_t> free_below;
-      for (std::size_t b = 0; b < first_body; ++b)
-        if (particles.y[b] < layer.bottom)
-          {
-            particles.fix_body(b);
-            fixed_solid += share_in_slab(particles, b, layer.bottom, layer.top) * particles.body_area(b);
-          }
-        else
-          free_below.push_back(b);
-      const double sheet_area = sheet_area_in_slab(laid, 0.0, t.width, layer.bottom, layer.top);
-      std::vector<double> starting_area(layer.n_bodies);
-      for (std::size_t i = 0; i < layer.n_bodies; ++i)
-        starting_area[i] = particles.body_area(first_body + i);
 
-      // 2. Growth without gravity under the lid, to the porosity of the layer's slab.
-      DemSystem growing(std::move(particles), material, growth_settings);
-      growing.set_skip_contacts_between_fixed_bodies(true); // the lifts below are fixed: their contacts cannot change
-      walls = add_tank_walls(growing, t, lid_level, slot_bottom, slot_top);
-      // A sheet laid on the layers below stays where it lies while this layer grows round it.
-      for (const SparSheet &sheet : laid)
-        growing.add_sheet(sheet);
-      double area_factor = 1.0; // (size now / starting size)^2 of the growing particles
-      RedfGrowth growth;
-      growth.jam_stress = [&] { return growing.walls()[walls.lid].normal_stress(); };
-      growth.porosity = [&] {
-        const ParticleSet &p = growing.particles();
-        double solid = fixed_solid, grown_solid = 0.0; // grown_solid at the starting sizes
-        for (const std::size_t b : free_below)
-          solid += share_in_slab(p, b, layer.bottom, layer.top) * p.body_area(b);
-        for (std::size_t i = 0; i < layer.n_bodies; ++i)
-          grown_solid += share_in_slab(p, first_body + i, layer.bottom, layer.top) * starting_area[i];
-        return 1.0 - (solid + area_factor * grown_solid) / (t.width * (layer.top - layer.bottom) - sheet_area);
-      };
-      growth.grow = [&](double factor) {
-        growing.scale_particle_sizes(factor, first_body); // the lifts below keep their sizes
-        area_factor *= factor * factor;
-      };
-      const double done = static_cast<double>(k) / static_cast<double>(n_layers);
-      const double share = 1.0 / static_cast<double>(n_layers);
-      RedfGrowthResult grown;
-      try
+      // A lift below the first sheet may have been grown and settled from this very state before.
+      const bool cacheable = !t.lift_cache_directory.empty() && t.sheet && k + 1 <= t.sheet->layers_below;
+      const std::uint64_t key = cacheable ? lift_cache_key(t, k, s, layer, lid_level, particles) : 0;
+      const std::filesystem::path cached = cacheable ? lift_cache_file(t.lift_cache_directory, key) : "";
+      if (std::optional<DemSystemState> saved = cacheable ? load_lift(cached, key, layer) : std::nullopt)
         {
-          grown = grow_by_redf(growing, s, growth,
-                               progress ? std::function<void(double)>([&](double f) { progress(done + 0.7 * share * f); })
-                                        : std::function<void(double)>());
-        }
-      catch (const std::runtime_error &e)
-        {
-          throw std::runtime_error(where + e.what());
-        }
-      layer.porosity_grown = growth.porosity();
-      layer.growth_friction_deg = grown.growth_friction_deg;
-      layer.n_growth_steps = grown.n_steps;
-      growing.set_particle_law(material);
-
-      // 3. Settling under gravity: the same state (contacts and their history) in a system with
-      // gravity, the lid parked above the fill, the layers below free again.
-      growing.walls()[walls.lid].translate(Vec2(0.0, t.height + thickness - lid_level));
-      DemSystemState state = growing.export_state();
-      for (std::size_t b = 0; b < first_body; ++b)
-        if (state.particles.inverse_mass[b] == 0.0)
-          {
-            state.particles.inverse_mass[b] = 1.0 / state.particles.mass[b];
-            state.particles.inverse_inertia[b] = 1.0 / state.particles.inertia[b];
-          }
-      settled = std::make_unique<DemSystem>(state.particles, material, settling_settings);
-      add_tank_walls(*settled, t, lid_level, slot_bottom, slot_top);
-      settled->restore_state(std::move(state));
-      // The growth's last forces had no gravity and, with its contacts between fixed bodies
-      // skipped, left those out of the lower lifts' resultants: the settling starts from forces
-      // evaluated afresh.
-      settled->initialise_forces_at_next_step();
-      // The growth ran at the step its grains' starting sizes allowed (a fraction of their final
-      // ones, so a lighter body and a shorter critical step); grown, they allow a longer one.
-      // Without this the settling and the pull-out after the fill ran at 0.61 of the critical
-      // step instead of 0.8 (measured on the 6,000-cluster tank: dt 1.006e-5 s, critical
-      // 1.655e-5 s), 31 % more steps than needed.
-      settled->set_time_step(settling_settings.time_step_safety * settled->critical_time_step());
-      settled->request_neighbour_rebuild();
-      const std::uint64_t check_every = 200;
-      for (;;)
-        {
-          settled->step();
-          if (++layer.n_settling_steps % check_every != 0)
-            continue;
-          const double unbalanced = unbalanced_force_ratio(*settled);
-          if (unbalanced < t.equilibrium_unbalanced_ratio)
-            break;
-          if (layer.n_growth_steps + layer.n_settling_steps > t.max_steps_per_layer)
-            {
-              std::ostringstream message;
-              message << where << "the fill has not settled under gravity after " << t.max_steps_per_layer
-                      << " steps (unbalanced-force ratio " << unbalanced << ", asked below "
-                      << t.equilibrium_unbalanced_ratio << ")";
-              throw std::runtime_error(message.str());
-            }
+          // As the settling below leaves it: the same construction, the saved state restored.
+          settled = std::make_unique<DemSystem>(saved->particles, material, settling_settings);
+          walls = add_tank_walls(*settled, t, lid_level, slot_bottom, slot_top);
+          settled->restore_state(std::move(*saved));
+          layer.from_cache = true;
           if (progress)
-            progress(done + share * (0.7 + 0.3 * std::min(1.0, static_cast<double>(layer.n_settling_steps) / 50000.0)));
+            progress(static_cast<double>(k + 1) / static_cast<double>(n_layers));
+        }
+      else
+        {
+          // While this layer grows, the grains below its slab are fixed (a compacted lift is nearly
+          // rigid under the next one): their share of the slab is constant. The grains of the layer
+          // below that stand in the slab (its band) stay free, so that they can rearrange with the
+          // new grains, as the top of a lift does when the next one is compacted on it.
+          double fixed_solid = 0.0;
+          std::vector<std::size_t> free_below;
+          for (std::size_t b = 0; b < first_body; ++b)
+            if (particles.y[b] < layer.bottom)
+              {
+                particles.fix_body(b);
+                fixed_solid += share_in_slab(particles, b, layer.bottom, layer.top) * particles.body_area(b);
+              }
+            else
+              free_below.push_back(b);
+          const double sheet_area = sheet_area_in_slab(laid, 0.0, t.width, layer.bottom, layer.top);
+          std::vector<double> starting_area(layer.n_bodies);
+          for (std::size_t i = 0; i < layer.n_bodies; ++i)
+            starting_area[i] = particles.body_area(first_body + i);
+
+          // 2. Growth without gravity under the lid, to the porosity of the layer's slab.
+          DemSystem growing(std::move(particles), material, growth_settings);
+          growing.set_skip_contacts_between_fixed_bodies(true); // the lifts below are fixed: their contacts cannot change
+          walls = add_tank_walls(growing, t, lid_level, slot_bottom, slot_top);
+          // A sheet laid on the layers below stays where it lies while this layer grows round it.
+          for (const SparSheet &sheet : laid)
+            growing.add_sheet(sheet);
+          double area_factor = 1.0; // (size now / starting size)^2 of the growing particles
+          RedfGrowth growth;
+          growth.jam_stress = [&] { return growing.walls()[walls.lid].normal_stress(); };
+          growth.porosity = [&] {
+            const ParticleSet &p = growing.particles();
+            double solid = fixed_solid, grown_solid = 0.0; // grown_solid at the starting sizes
+            for (const std::size_t b : free_below)
+              solid += share_in_slab(p, b, layer.bottom, layer.top) * p.body_area(b);
+            for (std::size_t i = 0; i < layer.n_bodies; ++i)
+              grown_solid += share_in_slab(p, first_body + i, layer.bottom, layer.top) * starting_area[i];
+            return 1.0 - (solid + area_factor * grown_solid) / (t.width * (layer.top - layer.bottom) - sheet_area);
+          };
+          growth.grow = [&](double factor) {
+            growing.scale_particle_sizes(factor, first_body); // the lifts below keep their sizes
+            area_factor *= factor * factor;
+          };
+          const double done = static_cast<double>(k) / static_cast<double>(n_layers);
+          const double share = 1.0 / static_cast<double>(n_layers);
+          RedfGrowthResult grown;
+          try
+            {
+              grown = grow_by_redf(growing, s, growth,
+                                   progress ? std::function<void(double)>([&](double f) { progress(done + 0.7 * share * f); })
+                                            : std::function<void(double)>());
+            }
+          catch (const std::runtime_error &e)
+            {
+              throw std::runtime_error(where + e.what());
+            }
+          layer.porosity_grown = growth.porosity();
+          layer.growth_friction_deg = grown.growth_friction_deg;
+          layer.n_growth_steps = grown.n_steps;
+          growing.set_particle_law(material);
+
+          // 3. Settling under gravity: the same state (contacts and their history) in a system with
+          // gravity, the lid parked above the fill, the layers below free again.
+          growing.walls()[walls.lid].translate(Vec2(0.0, t.height + thickness - lid_level));
+          DemSystemState state = growing.export_state();
+          for (std::size_t b = 0; b < first_body; ++b)
+            if (state.particles.inverse_mass[b] == 0.0)
+              {
+                state.particles.inverse_mass[b] = 1.0 / state.particles.mass[b];
+                state.particles.inverse_inertia[b] = 1.0 / state.particles.inertia[b];
+              }
+          settled = std::make_unique<DemSystem>(state.particles, material, settling_settings);
+          add_tank_walls(*settled, t, lid_level, slot_bottom, slot_top);
+          settled->restore_state(std::move(state));
+          // The growth's last forces had no gravity and, with its contacts between fixed bodies
+          // skipped, left those out of the lower lifts' resultants: the settling starts from forces
+          // evaluated afresh.
+          settled->initialise_forces_at_next_step();
+          // The growth ran at the step its grains' starting sizes allowed (a fraction of their final
+          // ones, so a lighter body and a shorter critical step); grown, they allow a longer one.
+          // Without this the settling and the pull-out after the fill ran at 0.61 of the critical
+          // step instead of 0.8 (measured on the 6,000-cluster tank: dt 1.006e-5 s, critical
+          // 1.655e-5 s), 31 % more steps than needed.
+          settled->set_time_step(settling_settings.time_step_safety * settled->critical_time_step());
+          settled->request_neighbour_rebuild();
+          const std::uint64_t check_every = 200;
+          for (;;)
+            {
+              settled->step();
+              if (++layer.n_settling_steps % check_every != 0)
+                continue;
+              const double unbalanced = unbalanced_force_ratio(*settled);
+              if (unbalanced < t.equilibrium_unbalanced_ratio)
+                break;
+              if (layer.n_growth_steps + layer.n_settling_steps > t.max_steps_per_layer)
+                {
+                  std::ostringstream message;
+                  message << where << "the fill has not settled under gravity after " << t.max_steps_per_layer
+                          << " steps (unbalanced-force ratio " << unbalanced << ", asked below "
+                          << t.equilibrium_unbalanced_ratio << ")";
+                  throw std::runtime_error(message.str());
+                }
+              if (progress)
+                progress(done + share * (0.7 + 0.3 * std::min(1.0, static_cast<double>(layer.n_settling_steps) / 50000.0)));
+            }
+          if (cacheable)
+            save_lift(*settled, layer, key, cached);
         }
       layers.push_back(layer);
       laid = settled->sheets();

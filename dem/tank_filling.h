@@ -52,8 +52,10 @@
 #include "dem_system.h"
 #include "packing.h"
 
+#include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace geohybrid::dem
@@ -120,6 +122,13 @@ struct TankFillingSpec
   int n_threads = 1;
   std::uint64_t max_steps_per_layer = 2'000'000; ///< growth and settling of one layer
   std::optional<SheetLaying> sheet;   ///< a geosynthetic laid at its depth while filling
+  /// The lifts below the first sheet, grown and settled, are kept here and taken from here by a
+  /// fill that starts one from the same state with the same settings (lift_cache.h): the cases
+  /// and calibration attempts of one tank and seed share them. Empty: no cache.
+  std::filesystem::path lift_cache_directory;
+  /// Part of a lift's key: the code's numbers version (a change of the numbers must not take a
+  /// lift made before it).
+  std::string lift_cache_version;
 };
 
 /// The tank's walls: indices into DemSystem::walls(). The base spans [0, width] at y = 0, the
@@ -147,6 +156,7 @@ struct TankLayer
   double porosity = 0.0;              ///< the same in the final fill (slab_porosity if there is no sheet) [-]
   double growth_friction_deg = 0.0;   ///< the lowest friction used in its growth
   std::uint64_t n_growth_steps = 0, n_settling_steps = 0;
+  bool from_cache = false;            ///< taken from TankFillingSpec::lift_cache_directory (its steps were made once, before)
 };
 
 struct FilledTank

@@ -64,7 +64,9 @@ TEST(ParametersHash, RunControlEntriesLeaveItPhysicsChangesIt)
   EXPECT_EQ(check_pullout_input(input_with(d.path, "run_control", base,
                                            "set output directory = " + (d.path / "elsewhere").string() +
                                              "\nset threads = 2\nset checkpoint interval = 10 # s\n"
-                                             "set stop after steps = 100\n")),
+                                             "set stop after steps = 100\n"
+                                             "subsection Filling\n  set lift cache directory = " +
+                                             (d.path / "lifts").string() + "\nend\n")),
             hash);
   const std::string stiffer = check_pullout_input(input_with(
     d.path, "stiffer", base, "subsection Sheet\n  subsection Interface\n    set normal stiffness = 2e7\n  end\nend\n"));
@@ -89,6 +91,7 @@ TEST(ParametersHash, RunControlEntriesLeaveItPhysicsChangesIt)
   EXPECT_EQ(geohybrid::apps::pullout_parameters_hash(prm), hash);
   EXPECT_FALSE(fs::exists(d.path / "out"));
   EXPECT_FALSE(fs::exists(d.path / "elsewhere"));
+  EXPECT_FALSE(fs::exists(d.path / "lifts"));
 }
 
 // Only entries that differ from their defaults are hashed: an entry set to its default, or one
