@@ -87,15 +87,14 @@ void expect_same_tank(const PullOutTank &a, const PullOutTank &b)
 TEST(LiftCache, ATakenLiftMakesTheSameTankBitForBit)
 {
   const geohybrid::testing::TemporaryDirectory cache("lift_cache");
-  const PullOutTank made = fill_pull_out_tank(small_tank(""));          // no cache
-  const PullOutTank kept = fill_pull_out_tank(small_tank(cache.path));  // makes the first lift, keeps it
+  // With a cold cache the fill makes every lift (the keeping comes after a lift is made).
+  const PullOutTank kept = fill_pull_out_tank(small_tank(cache.path));
   ASSERT_EQ(files_in(cache.path), 1u) << "one lift below the sheet";
   EXPECT_FALSE(kept.tank.layers[0].from_cache);
   const PullOutTank taken = fill_pull_out_tank(small_tank(cache.path)); // takes it
   EXPECT_TRUE(taken.tank.layers[0].from_cache);
   EXPECT_FALSE(taken.tank.layers[1].from_cache) << "the lift above the sheet is never kept";
-  expect_same_tank(made, kept);
-  expect_same_tank(made, taken);
+  expect_same_tank(kept, taken);
 
   // The sheet's settings do not reach the lift below it: the same lift is taken.
   PullOutTankSpec stiffer_sheet = small_tank(cache.path);
