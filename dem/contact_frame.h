@@ -1,0 +1,78 @@
+#pragma once
+// One builder of a contact's kinematics for every kind of contact of the DEM: disc-disc pairs
+// (DemSystem's pair loop), disc-wall, disc-sheet (sheet_contacts.h) and a sheet node on a wall.
+// Each kind measures its own geometry, the overlap and the unit normal n from side i to side j
+// (conventions.h), and hands them to ContactFrame. The frame gives the rest: the contact point on
+// a disc, its lever from the body's centre, the velocity there, the ContactKinematics the law
+// reads (relative velocity v_j - v_i along n and t) and the force on side i, -Fn n + Ft t.
+//
+// The pair loop builds one for every touching pair, so it is all inline, on the stack, with no
+// virtual call. Its arithmetic is the loops' own, term for term: results are pinned bit for bit.
+#include "contact_law.h"
+#include "particles.h"
+
+#include <cstdint>
+
+namespace geohybrid::dem
+{
+struct ContactFrame
+{
+  Vec2 normal;    ///< unit, from side i towards side j
+  Vec2 tangent;   ///< perp(normal)
+  double overlap; ///< > 0 in penetration [m]
+  Vec2 point;     ///< the contact point [m]
+  Vec2 lever;     ///< from the centre of side i's body to the contact point (zero for a node) [m]
+  Vec2 velocity;  ///< of side i at the contact point [m/s]
+
+  /// Side i is disc `disc` of a rigid body. The contact point is on the disc's radius along n,
+  /// half the overlap inside its surface, and moves with the body (translation and spin).
+  static ContactFrame of_disc(const ParticleSet &p, std::uint32_t disc, const Vec2 &unit_normal, double overlap)
+  {
+    const std::uint32_t body = p.disc_body[disc];
+    const Vec2 point =
+      Vec2(p.disc_x[disc], p.disc_y[disc]) + (p.disc_radius[disc] - 0.5 * overlap) * unit_normal;
+    const Vec2 lever = point - Vec2(p.x[body], p.y[body]);
+    return {unit_normal, perp(unit_normal), overlap, point, lever, body_velocity_at(p, body, lever)};
+  }
+
+  /// Side i is a point mass (a sheet node) at `position`, moving at `velocity`.
+  static ContactFrame of_point(const Vec2 &position, const Vec2 &velocity, const Vec2 &unit_normal, double overlap)
+  {
+    return {unit_normal, perp(unit_normal), overlap, position, Vec2::Zero(), velocity};
+  }
+
+  /// The unit normal from `centre` towards the closest point of side j, at `distance` from it;
+  /// `fallback()` (side j's own normal, negated) when the centre lies on side j and has no
+  /// direction to it. For walls and sheets; a disc-disc pair has the inverse distance at hand.
+  template <class Fallback>
+  static Vec2 normal_towards(const Vec2 &centre, const Vec2 &closest, double distance, const Fallback &fallback)
+  {
+    return distance > 0.0 ? Vec2((closest - centre) / distance) : Vec2(fallback());
+  }
+
+  /// The velocity of the point at `lever` from the centre of body b: v_b + omega_b x lever.
+  static Vec2 body_velocity_at(const ParticleSet &p, std::uint32_t body, const Vec2 &lever)
+  {
+    return Vec2(p.vx[body], p.vy[body]) + spin_velocity(p.omega[body], lever);
+  }
+  /// The lever of the contact point from the centre of body b (side j's, for a disc-disc pair).
+  Vec2 lever_from(const ParticleSet &p, std::uint32_t body) const { return point - Vec2(p.x[body], p.y[body]); }
+
+  /// What LinearContactLaw::evaluate reads, side j moving at `velocity_j` at the contact point.
+  /// `inverse_mass_sum`: 1 / the effective mass (1/m_i + 1/m_j; 1/m_i against a wall).
+  ContactKinematics kinematics(const Vec2 &velocity_j, double inverse_mass_sum, double dt) const
+  {
+    const Vec2 relative_velocity = velocity_j - velocity;
+    return {overlap, -relative_velocity.dot(normal), relative_velocity.dot(tangent) * dt, inverse_mass_sum, dt};
+  }
+  /// d(overlap)/dt, side j moving at `velocity_j` [m/s].
+  double overlap_rate(const Vec2 &velocity_j) const
+  {
+    const Vec2 relative_velocity = velocity_j - velocity;
+    return -relative_velocity.dot(normal);
+  }
+
+  /// The force on side i: -Fn n + Ft t (side j gets the opposite) [N/m].
+  Vec2 force_on_i(const ContactForce &f) const { return -f.normal_force * normal + f.tangential_force * tangent; }
+};
+} // namespace geohybrid::dem
