@@ -237,8 +237,8 @@ void InterfaceWall::apply(dem::ParticleSet &p, fem::ExplicitSolver &continuum, d
       const Vec2 normal = dem::ContactFrame::normal_towards(centre, closest, distance,
                                                             [&]() -> Vec2 { return -dem::perp(ab).normalized(); });
       // The contact point of a disc still apart (a contact that held forces) is on its surface.
-      dem::ContactFrame contact = dem::ContactFrame::of_disc(p, d, normal, std::max(overlap, 0.0));
-      contact.overlap = overlap;
+      const dem::ContactFrame contact =
+        dem::ContactFrame::of_disc(p, d, normal, std::max(overlap, 0.0)).with_overlap(overlap);
       const InterfaceNode &na = nodes_[edge.start], &nb = nodes_[edge.end];
       const double shape_a = 1.0 - xi, shape_b = xi;
       const Vec2 v_edge = shape_a * Vec2(v.local_element(na.x_dof), v.local_element(na.y_dof)) +
@@ -254,7 +254,7 @@ void InterfaceWall::apply(dem::ParticleSet &p, fem::ExplicitSolver &continuum, d
       const Vec2 force = contact.force_on_i(f); // on the disc
       p.fx[b] += force.x();
       p.fy[b] += force.y();
-      p.torque[b] += dem::cross(contact.lever, force);
+      p.torque[b] += dem::cross(contact.lever(), force);
       sums.on_particles += force;
       continuum.add_external_force(na.x_dof, -shape_a * force.x());
       continuum.add_external_force(na.y_dof, -shape_a * force.y());

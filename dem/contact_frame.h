@@ -15,15 +15,9 @@
 
 namespace geohybrid::dem
 {
-struct ContactFrame
+class ContactFrame
 {
-  Vec2 normal;    ///< unit, from side i towards side j
-  Vec2 tangent;   ///< perp(normal)
-  double overlap; ///< > 0 in penetration [m]
-  Vec2 point;     ///< the contact point [m]
-  Vec2 lever;     ///< from the centre of side i's body to the contact point (zero for a node) [m]
-  Vec2 velocity;  ///< of side i at the contact point [m/s]
-
+public:
   /// Side i is disc `disc` of a rigid body. The contact point is on the disc's radius along n,
   /// half the overlap inside its surface, and moves with the body (translation and spin).
   static ContactFrame of_disc(const ParticleSet &p, std::uint32_t disc, const Vec2 &unit_normal, double overlap)
@@ -32,13 +26,13 @@ struct ContactFrame
     const Vec2 point =
       Vec2(p.disc_x[disc], p.disc_y[disc]) + (p.disc_radius[disc] - 0.5 * overlap) * unit_normal;
     const Vec2 lever = point - Vec2(p.x[body], p.y[body]);
-    return {unit_normal, perp(unit_normal), overlap, point, lever, body_velocity_at(p, body, lever)};
+    return ContactFrame(unit_normal, overlap, point, lever, body_velocity_at(p, body, lever));
   }
 
   /// Side i is a point mass (a sheet node) at `position`, moving at `velocity`.
   static ContactFrame of_point(const Vec2 &position, const Vec2 &velocity, const Vec2 &unit_normal, double overlap)
   {
-    return {unit_normal, perp(unit_normal), overlap, position, Vec2::Zero(), velocity};
+    return ContactFrame(unit_normal, overlap, position, Vec2::Zero(), velocity);
   }
 
   /// The unit normal from `centre` towards the closest point of side j, at `distance` from it;
@@ -55,24 +49,51 @@ struct ContactFrame
   {
     return Vec2(p.vx[body], p.vy[body]) + spin_velocity(p.omega[body], lever);
   }
+
+  Vec2 normal() const { return Vec2(normal_x_, normal_y_); }    ///< unit, from side i towards side j
+  Vec2 tangent() const { return perp(normal()); }               ///< perp(normal)
+  double overlap() const { return overlap_; }                   ///< > 0 in penetration [m]
+  Vec2 point() const { return Vec2(point_x_, point_y_); }       ///< the contact point [m]
+  /// From the centre of side i's body to the contact point (zero for a node) [m].
+  Vec2 lever() const { return Vec2(lever_x_, lever_y_); }
+  Vec2 velocity() const { return Vec2(velocity_x_, velocity_y_); } ///< of side i at the contact point [m/s]
   /// The lever of the contact point from the centre of body b (side j's, for a disc-disc pair).
-  Vec2 lever_from(const ParticleSet &p, std::uint32_t body) const { return point - Vec2(p.x[body], p.y[body]); }
+  Vec2 lever_from(const ParticleSet &p, std::uint32_t body) const { return point() - Vec2(p.x[body], p.y[body]); }
 
   /// What LinearContactLaw::evaluate reads, side j moving at `velocity_j` at the contact point.
   /// `inverse_mass_sum`: 1 / the effective mass (1/m_i + 1/m_j; 1/m_i against a wall).
   ContactKinematics kinematics(const Vec2 &velocity_j, double inverse_mass_sum, double dt) const
   {
-    const Vec2 relative_velocity = velocity_j - velocity;
-    return {overlap, -relative_velocity.dot(normal), relative_velocity.dot(tangent) * dt, inverse_mass_sum, dt};
+    const Vec2 relative_velocity = velocity_j - velocity();
+    return {overlap_, -relative_velocity.dot(normal()), relative_velocity.dot(tangent()) * dt, inverse_mass_sum, dt};
   }
   /// d(overlap)/dt, side j moving at `velocity_j` [m/s].
   double overlap_rate(const Vec2 &velocity_j) const
   {
-    const Vec2 relative_velocity = velocity_j - velocity;
-    return -relative_velocity.dot(normal);
+    const Vec2 relative_velocity = velocity_j - velocity();
+    return -relative_velocity.dot(normal());
   }
 
   /// The force on side i: -Fn n + Ft t (side j gets the opposite) [N/m].
-  Vec2 force_on_i(const ContactForce &f) const { return -f.normal_force * normal + f.tangential_force * tangent; }
+  Vec2 force_on_i(const ContactForce &f) const { return -f.normal_force * normal() + f.tangential_force * tangent(); }
+
+  /// The same frame for another overlap (the interface wall's contact point stays on the surface
+  /// of a disc still apart, while its law reads the true gap).
+  ContactFrame with_overlap(double overlap) const
+  {
+    ContactFrame frame = *this;
+    frame.overlap_ = overlap;
+    return frame;
+  }
+
+private:
+  // Plain doubles, not Vec2 members: the pair loop keeps them in registers (gcc 12 leaves a
+  // struct of Eigen vectors on the stack, +2 % instructions in the pair loop).
+  ContactFrame(const Vec2 &normal, double overlap, const Vec2 &point, const Vec2 &lever, const Vec2 &velocity)
+    : normal_x_(normal.x()), normal_y_(normal.y()), overlap_(overlap), point_x_(point.x()), point_y_(point.y())
+    , lever_x_(lever.x()), lever_y_(lever.y()), velocity_x_(velocity.x()), velocity_y_(velocity.y())
+  {}
+
+  double normal_x_, normal_y_, overlap_, point_x_, point_y_, lever_x_, lever_y_, velocity_x_, velocity_y_;
 };
 } // namespace geohybrid::dem

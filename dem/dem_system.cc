@@ -804,7 +804,7 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
       }
     c.force_x[q] = force_on_i.x();
     c.force_y[q] = force_on_i.y();
-    moment_i = cross(contact.lever, force_on_i);
+    moment_i = cross(contact.lever(), force_on_i);
     moment_j = -cross(lever_j, force_on_i);
     c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
     if constexpr (track_energy)
@@ -995,7 +995,7 @@ void DemSystem::compute_wall_forces()
           n_broken_bonds_ += f.bond_broke;
           p.fx[b] += force.x();
           p.fy[b] += force.y();
-          p.torque[b] += cross(contact.lever, force);
+          p.torque[b] += cross(contact.lever(), force);
           total -= force;
           n_touching += state.touching;
         }

@@ -304,7 +304,7 @@ SheetContactWork evaluate_sheet_contacts(ParticleSet &p, SparSheet &sheet, Sheet
       work.broken_bonds += f.bond_broke;
       p.fx[b] += force.x();
       p.fy[b] += force.y();
-      p.torque[b] += cross(contact.lever, force);
+      p.torque[b] += cross(contact.lever(), force);
       sheet.fx[k] -= (1.0 - s) * force.x();
       sheet.fy[k] -= (1.0 - s) * force.y();
       sheet.fx[k + 1] -= s * force.x();
