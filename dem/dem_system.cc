@@ -787,13 +787,20 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
         return false;
       }
     const double distance = std::sqrt(distance2), inverse_distance = 1.0 / distance;
-    const ContactFrame contact =
-      ContactFrame::of_disc(p, i, Vec2(dx * inverse_distance, dy * inverse_distance), radius_sum - distance);
-    const Vec2 lever_j = contact.lever_from(p, bj);
-    const ContactKinematics k = contact.kinematics(ContactFrame::body_velocity_at(p, bj, lever_j),
-                                                   p.inverse_mass[bi] + p.inverse_mass[bj], dt);
+    // ContactFrame's arithmetic on locals (see there: a frame object costs here).
+    const Vec2 normal(dx * inverse_distance, dy * inverse_distance);
+    const Vec2 tangent = perp(normal);
+    const double overlap = radius_sum - distance;
+    const Vec2 contact_point = ContactFrame::point_on_disc(p, i, normal, overlap);
+    const Vec2 lever_i = contact_point - Vec2(p.x[bi], p.y[bi]);
+    const Vec2 lever_j = contact_point - Vec2(p.x[bj], p.y[bj]);
+    const Vec2 v_i = ContactFrame::body_velocity_at(p, bi, lever_i);
+    const Vec2 v_j = ContactFrame::body_velocity_at(p, bj, lever_j);
+    const Vec2 v_rel = v_j - v_i;
+    const ContactKinematics k =
+      ContactFrame::kinematics(normal, tangent, overlap, v_rel, p.inverse_mass[bi] + p.inverse_mass[bj], dt);
     const ContactForce f = law.evaluate<with_dashpot>(k, state);
-    Vec2 force_on_i = contact.force_on_i(f);
+    Vec2 force_on_i = ContactFrame::force_on_i(normal, tangent, f);
     // A contact in a coupling band acts with the particles' share of the energy along its
     // branch (energy_weights.h); its state (the springs' forces) stays unweighted.
     [[maybe_unused]] double weight = 1.0;
@@ -804,7 +811,7 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
       }
     c.force_x[q] = force_on_i.x();
     c.force_y[q] = force_on_i.y();
-    moment_i = cross(contact.lever(), force_on_i);
+    moment_i = cross(lever_i, force_on_i);
     moment_j = -cross(lever_j, force_on_i);
     c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
     if constexpr (track_energy)

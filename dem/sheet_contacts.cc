@@ -333,7 +333,7 @@ SheetWallLoad evaluate_sheet_wall_contacts(SparSheet &sheet, const Wall &wall, S
         }
       const Vec2 normal =
         ContactFrame::normal_towards(centre, closest, distance, [&]() -> Vec2 { return -wall.normal(); });
-      const ContactFrame contact = ContactFrame::of_point(centre, Vec2(sheet.vx[k], sheet.vy[k]), normal, overlap);
+      const ContactFrame contact = ContactFrame::of_point(Vec2(sheet.vx[k], sheet.vy[k]), normal, overlap);
       const ContactForce f = wall.law.evaluate(contact.kinematics(wall.velocity, sheet.inverse_mass[k], dt), state);
       const Vec2 force = contact.force_on_i(f); // on the node
       c.force_x[q] = force.x();
