@@ -1,7 +1,7 @@
 #pragma once
 // The three benchmarks of `geohybrid coupling-test` for the method the input chooses: methods 1
-// and 2 on a lattice and a continuum overlapping in a band (coupling/benchmark_patch.h), method 3
-// on a lattice standing on the continuum (coupling/standing_lattice.h); the same three figures,
+// and 2 on a lattice and a continuum overlapping in a band (apps/coupling_benchmarks/coupled_patch.h), method 3
+// on a lattice standing on the continuum (apps/coupling_benchmarks/standing_lattice.h); the same three figures,
 // each with its definition for that method.
 #include "coupling_test_command.h"
 

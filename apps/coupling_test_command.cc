@@ -88,7 +88,7 @@ const std::array<MethodChoice, n_methods> &method_choices()
          return CouplingMethod(penalty);
        });
      }},
-    // The interface springs relative to the matched ones (coupling/standing_lattice.h), which
+    // The interface springs relative to the matched ones (apps/coupling_benchmarks/standing_lattice.h), which
     // depend on the lattice: kn = (lambda + 2 mu) d / r, ks = mu d / r.
     {"non-overlapping interface",
      [](ParameterHandler &prm, const std::string &where, const bench::PatchGeometry &lattice) {
@@ -136,7 +136,7 @@ void declare_coupling_test_parameters(ParameterHandler &prm)
                     "Normal contact stiffness kn of the bonded hexagonal lattice, per metre of thickness [N/m/m]");
   prm.declare_entry("shear stiffness", text(g.ks), Patterns::Double(1.0, 1e14),
                     "Tangential contact stiffness ks of the lattice, per metre of thickness; the continuum's E and "
-                    "nu follow from kn and ks in closed form (coupling/hexagonal_lattice.h) [N/m/m]");
+                    "nu follow from kn and ks in closed form (apps/coupling_benchmarks/hexagonal_lattice.h) [N/m/m]");
   prm.declare_entry("disc radius", text(g.radius), Patterns::Double(1e-5, 1.0),
                     "Radius of the lattice's equal discs; the particle spacing d is twice it [m]");
   prm.declare_entry("density", text(g.density), Patterns::Double(1.0, 1e5),

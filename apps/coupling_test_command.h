@@ -2,11 +2,11 @@
 // `geohybrid coupling-test FILE.prm` (issue 6): the coupling's benchmarks for one method, so that
 // users compare the methods with measured figures. It runs the patch test (ghost forces under a
 // uniform strain), a long wave through the band or the interface (the energy reflected) and an
-// undamped coupled run (the energy drift), all from coupling/coupling_benchmarks.h (methods 1
+// undamped coupled run (the energy drift), all from apps/coupling_benchmarks/coupling_benchmarks.h (methods 1
 // and 2 on the overlapping patch, method 3 on a lattice standing on the continuum), and writes summary.json,
 // parameters.prm, energy_history.csv and wave_reflection.csv.
-#include "coupling/coupling_benchmarks.h"
-#include "coupling/standing_lattice.h"
+#include "apps/coupling_benchmarks/coupling_benchmarks.h"
+#include "apps/coupling_benchmarks/standing_lattice.h"
 
 #include <deal.II/base/parameter_handler.h>
 

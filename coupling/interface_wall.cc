@@ -1,5 +1,6 @@
 #include "interface_wall.h"
 
+#include "dem/contact_frame.h"
 #include "dem/contact_list.h"
 
 #include <deal.II/base/mpi.h>
@@ -233,31 +234,27 @@ void InterfaceWall::apply(dem::ParticleSet &p, fem::ExplicitSolver &continuum, d
       const double overlap = owned ? p.disc_radius[d] - distance : std::min(0.0, p.disc_radius[d] - distance);
       if (overlap <= 0.0 && !state.touching)
         continue;
-      const Vec2 outward = dem::perp(ab).normalized();
-      const Vec2 normal = distance > 0.0 ? Vec2((closest - centre) / distance) : Vec2(-outward);
-      const Vec2 tangent = dem::perp(normal);
-      const Vec2 contact_point = centre + (p.disc_radius[d] - 0.5 * std::max(overlap, 0.0)) * normal;
-      const Vec2 lever = contact_point - Vec2(p.x[b], p.y[b]);
-      const Vec2 v_disc = Vec2(p.vx[b], p.vy[b]) + dem::spin_velocity(p.omega[b], lever);
+      const Vec2 normal = dem::ContactFrame::normal_towards(centre, closest, distance,
+                                                            [&]() -> Vec2 { return -dem::perp(ab).normalized(); });
+      // The contact point of a disc still apart (a contact that held forces) is on its surface.
+      const dem::ContactFrame contact =
+        dem::ContactFrame::of_disc(p, d, normal, std::max(overlap, 0.0)).with_overlap(overlap);
       const InterfaceNode &na = nodes_[edge.start], &nb = nodes_[edge.end];
       const double shape_a = 1.0 - xi, shape_b = xi;
       const Vec2 v_edge = shape_a * Vec2(v.local_element(na.x_dof), v.local_element(na.y_dof)) +
                           shape_b * Vec2(v.local_element(nb.x_dof), v.local_element(nb.y_dof));
-      const Vec2 v_rel = v_edge - v_disc;
       const double inverse_mass_sum =
         p.inverse_mass[b] + shape_a * shape_a * na.inverse_mass + shape_b * shape_b * nb.inverse_mass;
-      const dem::ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * drift_time, inverse_mass_sum,
-                                     drift_time};
-      const dem::ContactForce f = law_.evaluate(k, state);
+      const dem::ContactForce f = law_.evaluate(contact.kinematics(v_edge, inverse_mass_sum, drift_time), state);
       dissipated_ += f.friction_work + f.viscous_work;
       if (!state.touching)
         continue;
       elastic_energy_ += law_.elastic_energy(f.elastic_normal, f.tangential_force);
       ++n_touching_;
-      const Vec2 force = -f.normal_force * normal + f.tangential_force * tangent; // on the disc
+      const Vec2 force = contact.force_on_i(f); // on the disc
       p.fx[b] += force.x();
       p.fy[b] += force.y();
-      p.torque[b] += dem::cross(lever, force);
+      p.torque[b] += dem::cross(contact.lever(), force);
       sums.on_particles += force;
       continuum.add_external_force(na.x_dof, -shape_a * force.x());
       continuum.add_external_force(na.y_dof, -shape_a * force.y());

@@ -11,7 +11,7 @@ SheetCrossing::SheetCrossing(const dem::SparSheet &dem_sheet, std::size_t dem_sh
   : dem_sheet_index_(dem_sheet_index)
   , dem_node_(dem_sheet.n_nodes() - 1)
   , rest_length_(rest_length)
-  , axial_stiffness_(dem_sheet.axial_stiffness())
+  , chain_(dem_sheet.chain())
 {
   const std::string where = "sheet crossing: ";
   const fem::TrussSheet &truss = continuum_sheet.sheet();
@@ -26,7 +26,8 @@ SheetCrossing::SheetCrossing(const dem::SparSheet &dem_sheet, std::size_t dem_sh
               << neighbours << " m): its ends would be stiffer than the stable steps count";
       throw std::invalid_argument(message.str());
     }
-  if (std::abs(truss.parameters().axial_stiffness - axial_stiffness_) > 1e-12 * axial_stiffness_)
+  const double J = chain_.axial_stiffness;
+  if (std::abs(truss.chain().axial_stiffness - J) > 1e-12 * J)
     throw std::invalid_argument(where + "the two parts of the sheet have different axial stiffnesses J");
   continuum_sheet.add_node_mass(0, 0.5 * truss.parameters().areal_mass * rest_length *
                                      truss.parameters().mass_scaling);
@@ -37,9 +38,8 @@ void SheetCrossing::apply(dem::SparSheet &dem_sheet, fem::EmbeddedSheet &continu
   const dealii::Point<fem::dim> far = continuum_sheet.node_position(0);
   const double dx = far[0] - dem_sheet.x[dem_node_], dy = far[1] - dem_sheet.y[dem_node_];
   const double length = std::sqrt(dx * dx + dy * dy);
-  const double stretch = length - rest_length_;
-  tension_ = stretch > 0.0 ? axial_stiffness_ * stretch / rest_length_ : 0.0;
-  energy_ = stretch > 0.0 ? 0.5 * axial_stiffness_ / rest_length_ * stretch * stretch : 0.0;
+  tension_ = chain_.tension(length, rest_length_);
+  energy_ = chain_.elastic_energy(length, rest_length_);
   if (tension_ == 0.0)
     return;
   const double fx = tension_ * dx / length, fy = tension_ * dy / length;

@@ -4,7 +4,8 @@
 // are a DEM SparSheet in the particles' core, touched by the grains; the rest of the chain is an
 // EmbeddedSheet in the continuum, held by its Mohr-Coulomb interface (fem/sheet_interface.h).
 // The segment between the DEM sheet's last node c and the continuum sheet's first node belongs
-// to neither model and is carried here, the same tension-only spar as every other segment:
+// to neither model and is carried here, the same tension-only spar as every other segment
+// (geosynthetic::TensionOnlyChain, the DEM sheet's J):
 //   T = J (l - l0) / l0 for l > l0, 0 when slack,
 // pulling both end nodes towards each other. Each end node keeps half of its mass (the DEM node
 // keeps the half of the segment it had: SparSheet::keep_first_nodes; the continuum's first node
@@ -47,7 +48,8 @@ public:
 
 private:
   std::size_t dem_sheet_index_, dem_node_;
-  double rest_length_, axial_stiffness_;
+  double rest_length_;
+  geosynthetic::TensionOnlyChain chain_;
   double tension_ = 0.0, energy_ = 0.0;
 };
 } // namespace geohybrid::coupling

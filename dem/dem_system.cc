@@ -1,5 +1,7 @@
 #include "dem_system.h"
 
+#include "contact_frame.h"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -785,19 +787,20 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
         return false;
       }
     const double distance = std::sqrt(distance2), inverse_distance = 1.0 / distance;
+    // ContactFrame's arithmetic on locals (see there: a frame object costs here).
     const Vec2 normal(dx * inverse_distance, dy * inverse_distance);
     const Vec2 tangent = perp(normal);
     const double overlap = radius_sum - distance;
-    const Vec2 contact_point = Vec2(p.disc_x[i], p.disc_y[i]) + (p.disc_radius[i] - 0.5 * overlap) * normal;
+    const Vec2 contact_point = ContactFrame::point_on_disc(p, i, normal, overlap);
     const Vec2 lever_i = contact_point - Vec2(p.x[bi], p.y[bi]);
     const Vec2 lever_j = contact_point - Vec2(p.x[bj], p.y[bj]);
-    const Vec2 v_i = Vec2(p.vx[bi], p.vy[bi]) + spin_velocity(p.omega[bi], lever_i);
-    const Vec2 v_j = Vec2(p.vx[bj], p.vy[bj]) + spin_velocity(p.omega[bj], lever_j);
+    const Vec2 v_i = ContactFrame::body_velocity_at(p, bi, lever_i);
+    const Vec2 v_j = ContactFrame::body_velocity_at(p, bj, lever_j);
     const Vec2 v_rel = v_j - v_i;
-    const ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt,
-                              p.inverse_mass[bi] + p.inverse_mass[bj], dt};
+    const ContactKinematics k =
+      ContactFrame::kinematics(normal, tangent, overlap, v_rel, p.inverse_mass[bi] + p.inverse_mass[bj], dt);
     const ContactForce f = law.evaluate<with_dashpot>(k, state);
-    Vec2 force_on_i = -f.normal_force * normal + f.tangential_force * tangent;
+    Vec2 force_on_i = ContactFrame::force_on_i(normal, tangent, f);
     // A contact in a coupling band acts with the particles' share of the energy along its
     // branch (energy_weights.h); its state (the springs' forces) stays unweighted.
     [[maybe_unused]] double weight = 1.0;
@@ -983,16 +986,12 @@ void DemSystem::compute_wall_forces()
               c.friction_work[q] = c.viscous_work[q] = 0.0;
               continue;
             }
-          const Vec2 normal = distance > 0.0 ? Vec2((closest - centre) / distance) : Vec2(-wall.normal());
-          const Vec2 tangent = perp(normal);
           const std::uint32_t b = p.disc_body[d];
-          const Vec2 contact_point = centre + (p.disc_radius[d] - 0.5 * overlap) * normal;
-          const Vec2 lever = contact_point - Vec2(p.x[b], p.y[b]);
-          const Vec2 v_disc = Vec2(p.vx[b], p.vy[b]) + spin_velocity(p.omega[b], lever);
-          const Vec2 v_rel = wall.velocity - v_disc;
-          const ContactKinematics k{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt, p.inverse_mass[b], dt};
-          const ContactForce f = wall.law.evaluate(k, state);
-          const Vec2 force = -f.normal_force * normal + f.tangential_force * tangent;
+          const Vec2 normal =
+            ContactFrame::normal_towards(centre, closest, distance, [&]() -> Vec2 { return -wall.normal(); });
+          const ContactFrame contact = ContactFrame::of_disc(p, d, normal, overlap);
+          const ContactForce f = wall.law.evaluate(contact.kinematics(wall.velocity, p.inverse_mass[b], dt), state);
+          const Vec2 force = contact.force_on_i(f);
           c.force_x[q] = force.x();
           c.force_y[q] = force.y();
           c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
@@ -1003,7 +1002,7 @@ void DemSystem::compute_wall_forces()
           n_broken_bonds_ += f.bond_broke;
           p.fx[b] += force.x();
           p.fy[b] += force.y();
-          p.torque[b] += cross(lever, force);
+          p.torque[b] += cross(contact.lever(), force);
           total -= force;
           n_touching += state.touching;
         }

@@ -1,5 +1,7 @@
 #include "sheet_contacts.h"
 
+#include "contact_frame.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -256,27 +258,23 @@ SheetContactWork evaluate_sheet_contacts(ParticleSet &p, SparSheet &sheet, Sheet
         }
       const std::uint32_t d = c.disc[q], k = c.segment[q], b = p.disc_body[d];
       const double s = c.position[q];
-      const Vec2 centre(p.disc_x[d], p.disc_y[d]);
-      const Vec2 to_sheet = point_on_segment(sheet, k, s) - centre;
-      const double distance = to_sheet.norm();
+      const Vec2 centre(p.disc_x[d], p.disc_y[d]), closest = point_on_segment(sheet, k, s);
+      const double distance = (closest - centre).norm();
       // A disc centre on the centre line (a very deep overlap) has no defined normal: take the
       // segment's right-hand normal.
-      const Vec2 ab = sheet.node(k + 1) - sheet.node(k);
-      const Vec2 normal = distance > 0.0 ? Vec2(to_sheet / distance)
-                                         : (ab.squaredNorm() > 0.0 ? Vec2(-perp(ab).normalized()) : Vec2(0.0, -1.0));
-      const Vec2 tangent = perp(normal);
-      const Vec2 contact_point = centre + (p.disc_radius[d] - 0.5 * overlap) * normal;
-      const Vec2 lever = contact_point - Vec2(p.x[b], p.y[b]);
-      const Vec2 v_disc = Vec2(p.vx[b], p.vy[b]) + spin_velocity(p.omega[b], lever);
+      const Vec2 normal = ContactFrame::normal_towards(centre, closest, distance, [&]() -> Vec2 {
+        const Vec2 ab = sheet.node(k + 1) - sheet.node(k);
+        return ab.squaredNorm() > 0.0 ? Vec2(-perp(ab).normalized()) : Vec2(0.0, -1.0);
+      });
+      const ContactFrame contact = ContactFrame::of_disc(p, d, normal, overlap);
       const Vec2 v_sheet((1.0 - s) * sheet.vx[k] + s * sheet.vx[k + 1], (1.0 - s) * sheet.vy[k] + s * sheet.vy[k + 1]);
-      const Vec2 v_rel = v_sheet - v_disc;
       if (!c.counted[q])
         {
           // Switched off by the node rule while it held forces, and not handed over: the energy
           // of its springs as last stored is released, and the dashpot's last force does its
           // second half of work (as when a contact opens in LinearContactLaw).
           c.friction_work[q] = law.elastic_energy(c.elastic_normal_force[q], state.tangential_force);
-          c.viscous_work[q] = 0.5 * state.dashpot_force * (-v_rel.dot(normal)) * dt;
+          c.viscous_work[q] = 0.5 * state.dashpot_force * contact.overlap_rate(v_sheet) * dt;
           if (track_energy)
             {
               work.friction += c.friction_work[q];
@@ -290,10 +288,9 @@ SheetContactWork evaluate_sheet_contacts(ParticleSet &p, SparSheet &sheet, Sheet
       // ((1 - s)^2 / m_a + s^2 / m_b) F.
       const double sheet_inverse_mass =
         (1.0 - s) * (1.0 - s) * sheet.inverse_mass[k] + s * s * sheet.inverse_mass[k + 1];
-      const ContactKinematics kin{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt,
-                                  p.inverse_mass[b] + sheet_inverse_mass, dt};
-      const ContactForce f = law.evaluate(kin, state);
-      const Vec2 force = -f.normal_force * normal + f.tangential_force * tangent; // on the disc
+      const ContactForce f =
+        law.evaluate(contact.kinematics(v_sheet, p.inverse_mass[b] + sheet_inverse_mass, dt), state);
+      const Vec2 force = contact.force_on_i(f); // on the disc
       c.force_x[q] = force.x();
       c.force_y[q] = force.y();
       c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;
@@ -307,7 +304,7 @@ SheetContactWork evaluate_sheet_contacts(ParticleSet &p, SparSheet &sheet, Sheet
       work.broken_bonds += f.bond_broke;
       p.fx[b] += force.x();
       p.fy[b] += force.y();
-      p.torque[b] += cross(lever, force);
+      p.torque[b] += cross(contact.lever(), force);
       sheet.fx[k] -= (1.0 - s) * force.x();
       sheet.fy[k] -= (1.0 - s) * force.y();
       sheet.fx[k + 1] -= s * force.x();
@@ -334,12 +331,11 @@ SheetWallLoad evaluate_sheet_wall_contacts(SparSheet &sheet, const Wall &wall, S
           c.friction_work[q] = c.viscous_work[q] = 0.0;
           continue;
         }
-      const Vec2 normal = distance > 0.0 ? Vec2((closest - centre) / distance) : Vec2(-wall.normal());
-      const Vec2 tangent = perp(normal);
-      const Vec2 v_rel = wall.velocity - Vec2(sheet.vx[k], sheet.vy[k]);
-      const ContactKinematics kin{overlap, -v_rel.dot(normal), v_rel.dot(tangent) * dt, sheet.inverse_mass[k], dt};
-      const ContactForce f = wall.law.evaluate(kin, state);
-      const Vec2 force = -f.normal_force * normal + f.tangential_force * tangent; // on the node
+      const Vec2 normal =
+        ContactFrame::normal_towards(centre, closest, distance, [&]() -> Vec2 { return -wall.normal(); });
+      const ContactFrame contact = ContactFrame::of_point(Vec2(sheet.vx[k], sheet.vy[k]), normal, overlap);
+      const ContactForce f = wall.law.evaluate(contact.kinematics(wall.velocity, sheet.inverse_mass[k], dt), state);
+      const Vec2 force = contact.force_on_i(f); // on the node
       c.force_x[q] = force.x();
       c.force_y[q] = force.y();
       c.elastic_normal_force[q] = state.touching ? f.elastic_normal : 0.0;

@@ -147,12 +147,7 @@ namespace
 /// Stiffness a free node of `sheet` can meet: its segments' J / l0 plus the stiffest contact.
 double node_stiffness(const SparSheet &sheet, std::size_t k, double contact_stiffness)
 {
-  double stiffness = contact_stiffness;
-  if (k > 0)
-    stiffness += sheet.axial_stiffness() / sheet.rest_length[k - 1];
-  if (k + 1 < sheet.n_nodes())
-    stiffness += sheet.axial_stiffness() / sheet.rest_length[k];
-  return stiffness;
+  return sheet.chain().node_stiffness(sheet.rest_length.data(), sheet.n_nodes(), k, contact_stiffness);
 }
 } // namespace
 
@@ -189,17 +184,17 @@ void SparSheet::start_forces(const Vec2 &gravity)
 
 void SparSheet::add_axial_forces()
 {
-  const double J = parameters_.axial_stiffness;
+  const geosynthetic::TensionOnlyChain law = chain();
   for (std::size_t k = 0; k < n_segments(); ++k)
     {
       const double dx = x[k + 1] - x[k], dy = y[k + 1] - y[k];
       const double length = std::sqrt(dx * dx + dy * dy), l0 = rest_length[k];
-      if (!(length > l0)) // slack (or folded onto itself): no compression, no bending
+      if (!law.is_taut(length, l0)) // slack (or folded onto itself): no compression, no bending
         {
           tension[k] = 0.0;
           continue;
         }
-      const double T = J * (length - l0) / l0;
+      const double T = law.tension(length, l0);
       tension[k] = T;
       const double tx = T * dx / length, ty = T * dy / length;
       fx[k] += tx;
@@ -281,13 +276,10 @@ double SparSheet::gravitational_energy(const Vec2 &gravity) const
 
 double SparSheet::elastic_energy() const
 {
+  const geosynthetic::TensionOnlyChain law = chain();
   double e = 0.0;
-  for (std::size_t k = 0; k < n_segments(); ++k)
-    {
-      const double stretch = segment_length(k) - rest_length[k];
-      if (stretch > 0.0)
-        e += 0.5 * parameters_.axial_stiffness / rest_length[k] * stretch * stretch;
-    }
+  for (std::size_t k = 0; k < n_segments(); ++k) // + 0.0 for a slack one: e >= +0.0, no bit changes
+    e += law.elastic_energy(segment_length(k), rest_length[k]);
   return e;
 }
 

@@ -6,7 +6,9 @@
 //   T = J (l - l0) / l0   when l > l0,   T = 0   when l <= l0 (no compression, no bending),
 //
 // with J the tensile stiffness per metre of width [N/m] (GT75: 687 kN/m, GT230: 2104 kN/m,
-// Table 2), l the current and l0 the rest length of the segment. The chain is any polyline, so a
+// Table 2), l the current and l0 the rest length of the segment. That law, its node stiffness and
+// its energy are geosynthetic::TensionOnlyChain's (geosynthetic/tension_only_chain.h), shared with
+// the continuum's truss. The chain is any polyline, so a
 // wrap-around anchorage (lower part, vertical return, upper part) is one sheet. In 2D, per metre
 // of width like everything else (conventions.h): T in N/m, node masses in kg/m.
 //
@@ -35,6 +37,8 @@
 // the contact code read them directly; SparSheet keeps them consistent.
 #include "contact_law.h"
 #include "soa_vector.h"
+
+#include "geosynthetic/tension_only_chain.h"
 
 #include <string>
 #include <vector>
@@ -71,6 +75,8 @@ public:
   const SheetParameters &parameters() const { return parameters_; }
   const LinearContactLaw &interface_law() const { return interface_law_; }
   double axial_stiffness() const { return parameters_.axial_stiffness; }
+  /// The tension-only law of its segments, with its J.
+  geosynthetic::TensionOnlyChain chain() const { return {parameters_.axial_stiffness}; }
   double thickness() const { return parameters_.thickness; }
 
   std::size_t n_nodes() const { return x.size(); }
@@ -78,7 +84,10 @@ public:
   Vec2 node(std::size_t k) const { return Vec2(x[k], y[k]); }
   double segment_length(std::size_t k) const;
   /// Strain (l - l0) / l0 of segment k now (negative when slack) [-].
-  double segment_strain(std::size_t k) const { return segment_length(k) / rest_length[k] - 1.0; }
+  double segment_strain(std::size_t k) const
+  {
+    return geosynthetic::TensionOnlyChain::strain(segment_length(k), rest_length[k]);
+  }
 
   /// Node k moves at velocity v whatever the forces (a clamp); its reaction is reported.
   void prescribe_velocity(std::size_t k, const Vec2 &v);

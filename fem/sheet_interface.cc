@@ -387,11 +387,7 @@ double EmbeddedSheet::stable_time_step() const
   double smallest = std::numeric_limits<double>::max();
   for (std::size_t k = 0; k < sheet_.n_nodes(); ++k)
     {
-      double stiffness = k_interface * sheet_.tributary_length(k);
-      if (k > 0)
-        stiffness += p.axial_stiffness / sheet_.rest_length(k - 1);
-      if (k + 1 < sheet_.n_nodes())
-        stiffness += p.axial_stiffness / sheet_.rest_length(k);
+      const double stiffness = sheet_.node_stiffness(k, k_interface * sheet_.tributary_length(k));
       smallest = std::min(smallest, 2.0 / std::sqrt(2.0 * stiffness / node_mass(k)));
     }
   return smallest;

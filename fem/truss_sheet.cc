@@ -69,11 +69,12 @@ double TrussSheet::node_mass(std::size_t k) const
 
 std::vector<double> TrussSheet::axial_forces(const std::vector<Force> &u) const
 {
+  const geosynthetic::TensionOnlyChain law = chain();
   std::vector<double> forces(n_segments());
   for (std::size_t s = 0; s < n_segments(); ++s)
     {
       const double l = ((nodes_[s + 1] + u[s + 1]) - (nodes_[s] + u[s])).norm();
-      forces[s] = parameters_.axial_stiffness * std::max(0.0, l / rest_lengths_[s] - 1.0);
+      forces[s] = law.tension_at_strain(law.strain(l, rest_lengths_[s]));
     }
   return forces;
 }
@@ -96,13 +97,14 @@ std::vector<TrussSheet::Force> TrussSheet::nodal_forces(const std::vector<Force>
 dealii::Tensor<2, dim> TrussSheet::segment_stiffness(const std::vector<Force> &u, std::size_t s) const
 {
   const Force d = (nodes_[s + 1] + u[s + 1]) - (nodes_[s] + u[s]);
-  const double l = d.norm(), l0 = rest_lengths_[s], J = parameters_.axial_stiffness;
+  const double l = d.norm(), l0 = rest_lengths_[s];
+  const geosynthetic::TensionOnlyChain law = chain();
   dealii::Tensor<2, dim> K;
   if (l < l0)
     return K;
   const Force e = d / l;
-  const double T = J * (l / l0 - 1.0);
-  K = (J / l0 - T / l) * dealii::outer_product(e, e);
+  const double T = law.tension_at_strain(law.strain(l, l0)); // l >= l0: J (l / l0 - 1)
+  K = (law.spring_stiffness(l0) - T / l) * dealii::outer_product(e, e);
   for (unsigned int i = 0; i < dim; ++i)
     K[i][i] += T / l;
   return K;

@@ -5,13 +5,16 @@
 //   T = J (l - l0) / l0   when l > l0,   T = 0   when l <= l0 (no compression, no bending),
 //
 // J the tensile stiffness per metre of width [N/m], l the current and l0 the rest length of a
-// segment, per metre of width like everything in fem/ (conventions.h). The current length uses
+// segment, per metre of width like everything in fem/ (conventions.h). The law is
+// geosynthetic::TensionOnlyChain's (geosynthetic/tension_only_chain.h), the DEM sheet's too; this
+// truss computes T from the strain l / l0 - 1 (tension_at_strain). The current length uses
 // the nodes' displaced positions, as the DEM sheet does, so a sheet that rotates does not stretch.
 //
 // The sheet's parameters are those of the DEM sheet (J, areal mass, mass scaling, interface
 // friction angle 25.6 degrees and cohesion), in a value type of fem/ (fem/ must not include dem/;
 // apps/ fills both from one input file). The interface to the soil is sheet_interface.h.
 #include "fem/conventions.h"
+#include "geosynthetic/tension_only_chain.h"
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -54,6 +57,8 @@ public:
              const std::string &where = "sheet");
 
   const TrussSheetParameters &parameters() const { return parameters_; }
+  /// The tension-only law of its segments, with its J.
+  geosynthetic::TensionOnlyChain chain() const { return {parameters_.axial_stiffness}; }
   std::size_t n_nodes() const { return nodes_.size(); }
   std::size_t n_segments() const { return rest_lengths_.size(); }
   const dealii::Point<dim> &node(std::size_t k) const { return nodes_[k]; } ///< reference position [m]
@@ -64,6 +69,11 @@ public:
   Force tangent(std::size_t k) const;
   /// Inertial mass of node k: areal mass times tributary length times mass scaling [kg/m].
   double node_mass(std::size_t k) const;
+  /// The stiffness node k meets: `other_stiffness` plus J / l0 of its segments [N/m^2].
+  double node_stiffness(std::size_t k, double other_stiffness) const
+  {
+    return chain().node_stiffness(rest_lengths_.data(), n_nodes(), k, other_stiffness);
+  }
 
   /// T of every segment for the node displacements `u` [N/m] (zero when slack).
   std::vector<double> axial_forces(const std::vector<Force> &u) const;

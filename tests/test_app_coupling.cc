@@ -1,10 +1,10 @@
 // `geohybrid coupling-test` end to end (issue 6): for each coupling method, the summary's figures
-// are those of the library's benchmarks (coupling/coupling_benchmarks.h, the method's own
+// are those of the library's benchmarks (apps/coupling_benchmarks/coupling_benchmarks.h, the method's own
 // scenarios) for the same input, and within what coupling/README.md documents; the histories are written; bad input is refused
 // naming the entry and the file, with no output directory left behind.
 #include "apps/coupling_test_command.h"
 #include "apps/summary.h"
-#include "coupling/hexagonal_lattice.h"
+#include "apps/coupling_benchmarks/hexagonal_lattice.h"
 #include "temporary_directory.h"
 #include "text_file.h"
 

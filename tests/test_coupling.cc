@@ -3,7 +3,7 @@
 // against a DEM run of the lattice; then the coupled stepper (penalty and Lagrange multipliers),
 // the patch test and the energy balance.
 #include "coupling/band_points.h"
-#include "coupling/hexagonal_lattice.h"
+#include "apps/coupling_benchmarks/hexagonal_lattice.h"
 #include "coupling/overlap_band.h"
 #include "dem/measurements.h"
 #include "test_coupling_support.h"

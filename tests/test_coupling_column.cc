@@ -3,8 +3,8 @@
 // stress of each model against the weight above it.
 #include "test_coupling_patch.h"
 
-#include "coupling/coupling_benchmarks.h"
-#include "coupling/standing_lattice.h"
+#include "apps/coupling_benchmarks/coupling_benchmarks.h"
+#include "apps/coupling_benchmarks/standing_lattice.h"
 
 #include <gtest/gtest.h>
 

@@ -52,7 +52,7 @@ TEST(CoupledStepper, MultipliersHoldTheTiedDiscsOnTheContinuum)
   EXPECT_LT(largest_force_sum, 1e-12 * largest_force);
 }
 
-/// The library's undamped energy run (coupling/coupling_benchmarks.h), reported.
+/// The library's undamped energy run (apps/coupling_benchmarks/coupling_benchmarks.h), reported.
 EnergyRecord reported_energy_record(const CouplingMethod &method, unsigned int n_steps, double dt = 0.0)
 {
   const EnergyRecord record = energy_record(method, n_steps, dt);

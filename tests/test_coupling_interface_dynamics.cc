@@ -1,7 +1,7 @@
 // Method 3 of issue 6 in motion: a long wave through the non-overlapping interface (the energy it
 // reflects, same measure as test_coupling_waves.cc), the energy of an undamped coupled run over
 // 10,000 steps, and the coupling's forces on both sides summing to zero. The scenarios are the
-// library's (coupling/interface_benchmark.cc, run by `geohybrid coupling-test` too): a strip 6
+// library's (apps/coupling_benchmarks/interface_benchmark.cc, run by `geohybrid coupling-test` too): a strip 6
 // columns wide, 47 rows of bonded discs (40.7 spacings) standing on 40 cells of the continuum (40
 // spacings); a Gaussian pulse of downward velocity 20 spacings above the interface on every disc.
 // Its downward half is a compression that crosses the interface (the interface carries no

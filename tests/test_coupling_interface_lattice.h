@@ -1,9 +1,9 @@
 #pragma once
 // Shared set-up of the tests of method 3 (the non-overlapping interface): the interface's contact
 // laws. The lattice standing on the continuum and its scenarios are library code
-// (coupling/standing_lattice.h, coupling/coupling_benchmarks.h), shared with
+// (apps/coupling_benchmarks/standing_lattice.h, apps/coupling_benchmarks/coupling_benchmarks.h), shared with
 // `geohybrid coupling-test`.
-#include "coupling/standing_lattice.h"
+#include "apps/coupling_benchmarks/standing_lattice.h"
 #include "test_coupling_patch.h"
 
 namespace geohybrid::coupling::testing

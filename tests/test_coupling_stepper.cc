@@ -13,7 +13,7 @@ using namespace geohybrid::coupling::testing;
 
 namespace
 {
-// strained_patch and ghost_forces are the library's (coupling/coupling_benchmarks.h), the same
+// strained_patch and ghost_forces are the library's (apps/coupling_benchmarks/coupling_benchmarks.h), the same
 // functions `geohybrid coupling-test` reports from.
 const PlaneStrain patch_strain{1.0e-7, -0.4e-7, 0.3e-7}; // xx, yy, xy
 

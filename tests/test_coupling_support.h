@@ -1,6 +1,6 @@
 #pragma once
 // Shared set-up of the coupling tests: hexagonal lattices of equal discs and their contact law.
-#include "coupling/benchmark_patch.h"
+#include "apps/coupling_benchmarks/coupled_patch.h"
 #include "dem/dem_system.h"
 
 #include <cmath>

@@ -13,7 +13,7 @@ using namespace geohybrid::coupling::testing;
 
 namespace
 {
-/// The library's wave benchmarks (coupling/coupling_benchmarks.h: the pulse, the reference run of
+/// The library's wave benchmarks (apps/coupling_benchmarks/coupling_benchmarks.h: the pulse, the reference run of
 /// the particles alone, the difference energy in the free discs), reported.
 WaveRecord reported(const WaveRecord &record, const PatchGeometry &g, double pulse_width, bool blob)
 {

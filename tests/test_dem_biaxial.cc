@@ -88,7 +88,7 @@ TEST(MohrCoulomb, FitRecoversAngleAndCohesion)
 // The continuum of the same soil: a plane-strain isotropic continuum (E, nu) in a biaxial test
 // has E_2D = E / (1 - nu^2) and nu_2D = nu / (1 - nu); continuum_equivalent inverts that. On the
 // hexagonal lattice above (nu_2D = (kn - ks) / (3 kn + ks)) it gives nu = (kn - ks) / (4 kn), the
-// plane-strain ratio of coupling/hexagonal_lattice.h, derived there from the lattice's Lame moduli.
+// plane-strain ratio of apps/coupling_benchmarks/hexagonal_lattice.h, derived there from the lattice's Lame moduli.
 TEST(Biaxial, ContinuumEquivalentIsThePlaneStrainSoilWithTheSameResponse)
 {
   BiaxialParameters b;

@@ -1,6 +1,6 @@
-#include "benchmark_patch.h"
+#include "coupled_patch.h"
 
-#include "coupling/hexagonal_lattice.h"
+#include "apps/coupling_benchmarks/hexagonal_lattice.h"
 
 #include <deal.II/grid/grid_generator.h>
 

@@ -5,7 +5,7 @@
 //   - the energy of an undamped coupled run: its drift over many steps;
 //   - a long wave through the band: the fraction of its energy the band reflects.
 // Measured figures and their discussion: coupling/README.md.
-#include "coupling/benchmark_patch.h"
+#include "apps/coupling_benchmarks/coupled_patch.h"
 
 #include <algorithm>
 #include <cstddef>

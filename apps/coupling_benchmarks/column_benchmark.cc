@@ -1,7 +1,7 @@
 // The geostatic column across the band (coupling_benchmarks.h): gravity and damping in the
 // coupled stepper, checked against the weight above each point.
-#include "coupling/coupling_benchmarks.h"
-#include "coupling/hexagonal_lattice.h"
+#include "apps/coupling_benchmarks/coupling_benchmarks.h"
+#include "apps/coupling_benchmarks/hexagonal_lattice.h"
 #include "dem/measurements.h"
 
 #include <cmath>

@@ -2,7 +2,7 @@
 // weights are exact, and the lattice's own stress for the continuum.
 #include "coupling_benchmarks.h"
 
-#include "coupling/hexagonal_lattice.h"
+#include "apps/coupling_benchmarks/hexagonal_lattice.h"
 #include "dem/measurements.h"
 
 #include <deal.II/dofs/dof_tools.h>

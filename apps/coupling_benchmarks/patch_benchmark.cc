@@ -1,7 +1,7 @@
 // The patch test and the undamped energy run (coupling_benchmarks.h).
 #include "coupling_benchmarks.h"
 
-#include "coupling/hexagonal_lattice.h"
+#include "apps/coupling_benchmarks/hexagonal_lattice.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/dofs/dof_tools.h>

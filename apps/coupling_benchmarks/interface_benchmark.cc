@@ -4,8 +4,8 @@
 // wave_benchmark.cc), across the interface y = 0 instead of a band.
 #include "coupling_benchmarks.h"
 
-#include "coupling/hexagonal_lattice.h"
-#include "coupling/standing_lattice.h"
+#include "apps/coupling_benchmarks/hexagonal_lattice.h"
+#include "apps/coupling_benchmarks/standing_lattice.h"
 #include "dem/measurements.h"
 
 #include <algorithm>

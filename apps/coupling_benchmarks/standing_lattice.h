@@ -3,8 +3,8 @@
 // hexagonal lattice of bonded equal discs standing on the matching plane-strain continuum below a
 // straight interface y = 0, and the interface springs that match the lattice. The tests
 // (tests/test_coupling_interface*.cc) and `geohybrid coupling-test` build it here.
-#include "coupling/benchmark_patch.h"
-#include "coupling/coupling_benchmarks.h"
+#include "apps/coupling_benchmarks/coupled_patch.h"
+#include "apps/coupling_benchmarks/coupling_benchmarks.h"
 #include "coupling/coupling_method.h"
 
 #include <memory>

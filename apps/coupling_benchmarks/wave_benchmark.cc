@@ -2,7 +2,7 @@
 // particle region, measured against a run of the particles alone over the whole patch.
 #include "coupling_benchmarks.h"
 
-#include "coupling/hexagonal_lattice.h"
+#include "apps/coupling_benchmarks/hexagonal_lattice.h"
 
 #include <algorithm>
 #include <cmath>
