@@ -53,6 +53,9 @@ std::string difference_percent(double value, double reference)
   return text;
 }
 
+/// A number of sweep.csv (12 digits) to 4 for the page; an empty cell stays empty.
+std::string short_number(const std::string &cell) { return cell.empty() ? cell : number(std::stod(cell), 4); }
+
 /// The entries of `file` that differ from their defaults, as (path, value), read with `declare`;
 /// false if the file cannot be read so (another command's, or of an older version).
 bool entries_off_default(const fs::path &file, const std::function<void(dealii::ParameterHandler &)> &declare,
@@ -251,8 +254,9 @@ std::string sweep_section(const fs::path &directory)
   for (const std::vector<std::string> &v : values)
     {
       std::vector<std::string> row(v.begin() + static_cast<long>(first_entry), v.begin() + static_cast<long>(member_column));
-      for (const std::size_t c : {std::size_t(1), std::size_t(2), std::size_t(3), std::size_t(4), std::size_t(5)})
-        row.push_back(v[c]);
+      row.push_back(v[1]);
+      for (const std::size_t c : {std::size_t(2), std::size_t(3), std::size_t(4), std::size_t(5)})
+        row.push_back(short_number(v[c]));
       std::string paper;
       for (const std::vector<std::string> &m : members)
         {
@@ -284,8 +288,8 @@ std::string sweep_section(const fs::path &directory)
     {
       std::vector<std::string> row{m[member_column]};
       row.insert(row.end(), m.begin() + static_cast<long>(first_entry), m.begin() + static_cast<long>(member_column));
-      for (const std::size_t c : {std::size_t(1), std::size_t(2), member_column + 1})
-        row.push_back(m[c]);
+      for (const std::string &cell : {m[1], short_number(m[2]), m[member_column + 1]})
+        row.push_back(cell);
       member_rows.push_back(row);
     }
   out += "<h3>Members</h3>\n" + html::table(member_header, member_rows, "sweep-members");
@@ -339,8 +343,8 @@ void write_report(const std::vector<fs::path> &directories, const fs::path &html
   if (!html_file.parent_path().empty())
     fs::create_directories(html_file.parent_path());
   std::ofstream out(html_file);
-  out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>geohybrid report</title>\n<page_style>"
-      << page_style << "</page_style>\n</head>\n<body>\n<h1>geohybrid report</h1>\n<p>" << directories.size()
+  out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>geohybrid report</title>\n<style>"
+      << page_style << "</style>\n</head>\n<body>\n<h1>geohybrid report</h1>\n<p>" << directories.size()
       << " result director" << (directories.size() > 1 ? "ies" : "y") << ", " << date
       << ". The paper: Lajevardi, Briançon, Dias et al., <i>Experimental and numerical studies for geosynthetics "
          "anchorage with wrap around</i> (Tables 3, 4: experiments; Table 6: its PFC2D).</p>\n<ul class=\"contents\">"

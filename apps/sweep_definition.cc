@@ -46,7 +46,8 @@ std::string trimmed_value(const std::string &s)
   return first == std::string::npos ? "" : s.substr(first, s.find_last_not_of(" \t") + 1 - first);
 }
 
-/// The values of a swept entry: separated by ';' if there is one (list-valued entries), else by ','.
+/// The values of a swept entry: separated by ';' if there is one (list-valued entries; a final ';'
+/// ends the last value), else by ','.
 std::vector<std::string> split_values(const std::string &text)
 {
   const char separator = text.find(';') != std::string::npos ? ';' : ',';
@@ -55,6 +56,8 @@ std::vector<std::string> split_values(const std::string &text)
   for (std::size_t at; (at = text.find(separator, start)) != std::string::npos; start = at + 1)
     values.push_back(trimmed_value(text.substr(start, at - start)));
   values.push_back(trimmed_value(text.substr(start)));
+  if (separator == ';' && values.back().empty() && values.size() > 1)
+    values.pop_back(); // "0.006, 0.02;": one value that is a list
   return values;
 }
 
@@ -151,6 +154,10 @@ SweepDefinition parse_sweep(const std::string &input_file, ParameterHandler &prm
       else
         sweep.entries.push_back(entry);
     }
+  // The entries with several values first (the first is sweep.png's x axis), those with one (a
+  // plain override of the base input) after them, the seed last.
+  std::stable_partition(sweep.entries.begin(), sweep.entries.end(),
+                        [](const SweptEntry &e) { return e.values.size() > 1; });
   if (seeds)
     sweep.entries.push_back(*seeds);
   if (sweep.entries.empty())
@@ -187,10 +194,16 @@ SweepDefinition parse_sweep(const std::string &input_file, ParameterHandler &prm
               digit[e] = 0;
         }
     }
-  // Directory names: each entry by its last name (its whole path if two share one) and value.
+  // Directory names: each entry by its last name (its whole path if two share one) and value;
+  // the entries of one value only if no entry has more.
   std::map<std::string, int> last_names;
+  std::set<std::string> named;
   for (const SweptEntry &e : sweep.entries)
-    ++last_names[split_path(e.path).back()];
+    if (e.values.size() > 1 || sweep.entries.front().values.size() == 1)
+      {
+        ++last_names[split_path(e.path).back()];
+        named.insert(e.path);
+      }
   const auto label = [&](const std::string &path) {
     const std::string last = split_path(path).back();
     return name_part(last_names[last] > 1 ? path : last);
@@ -207,7 +220,8 @@ SweepDefinition parse_sweep(const std::string &input_file, ParameterHandler &prm
         if (seeds)
           member.values.emplace_back(sweep_seed_entry, seed);
         for (const auto &[path, value] : member.values)
-          member.name += (member.name.empty() ? "" : "_") + label(path) + "_" + name_part(value);
+          if (named.count(path) != 0)
+            member.name += (member.name.empty() ? "" : "_") + label(path) + "_" + name_part(value);
         names.insert(member.name);
         sweep.members.push_back(member);
       }

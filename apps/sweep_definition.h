@@ -16,7 +16,8 @@
 //
 // subsection Sweep mirrors the pull-out's entries (declare_pullout_parameters), each a list of
 // values, empty = not swept; values are separated by commas, or by semicolons when an entry's
-// value is itself a list ('Pull/tension profiles at = 0.006, 0.06; 0.01'). Each value is checked
+// value is itself a list ('Pull/tension profiles at = 0.006, 0.06; 0.01', and '0.006, 0.02;' for
+// one such value). An entry of one value is a plain override of the base input. Each value is checked
 // against the entry's own pattern when the sweep is read. 'Filling/seed' is the replicate
 // dimension: it is crossed with the other entries in either combination, and sweep.csv averages
 // over it (apps/sweep_results.h). The run-control entries (output directory, threads, checkpoint
@@ -44,7 +45,9 @@ struct SweptEntry
 struct SweepMember
 {
   std::size_t index = 0;        ///< 0-based, in the sweep's order (rank index % n_ranks runs it)
-  std::string name;             ///< its directory's name under the output directory: "B_0.125_seed_1"
+  /// Its directory's name under the output directory, from the entries of several values and the
+  /// seed: "B_0.125_seed_1".
+  std::string name;
   ParameterOverrides values;    ///< (path, value) of every swept entry, in SweepDefinition::entries' order
 };
 
@@ -54,7 +57,8 @@ struct SweepDefinition
   std::string base_input;                 ///< the pull-out input every member runs
   std::filesystem::path output_directory; ///< the members' directories, sweep.csv, sweep.png
   bool grid = true;
-  /// The swept entries: the others in ParameterHandler's order, then Filling/seed if swept. The
+  /// The swept entries: those of several values, then those of one (an override of the base
+  /// input: 'mode = fem'), each in ParameterHandler's order, then Filling/seed if swept. The
   /// first is the x axis of sweep.png.
   std::vector<SweptEntry> entries;
   /// Members ordered so that each value of the entries but the first and the seed is one block,

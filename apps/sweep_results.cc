@@ -90,7 +90,8 @@ void write_sweep_table(const SweepDefinition &sweep, const std::vector<MemberOut
           if (outcomes[m].status == "failed")
             failed += (failed.empty() ? "failed: " : ", ") + sweep.members[m].name;
         }
-      const std::string status = T_max.empty()                ? std::string("no result")
+      const std::string status = T_max.empty()             ? std::string("no result")
+                                 : !sweep.sweeps_seeds()    ? std::string("one run")
                                  : T_max.size() == n_seeds ? "all " + std::to_string(n_seeds) + " seeds"
                                                            : std::to_string(T_max.size()) + " of " + std::to_string(n_seeds) + " seeds";
       out << "over seeds," << status;
@@ -159,7 +160,7 @@ bool plot_sweep(const SweepDefinition &sweep, const std::filesystem::path &csv, 
         panel.series.push_back({csv, x_column, 3, label.empty() ? "min - max" : label + ": min - max", 1.0, 1.0,
                                 "yerrorbars lw 1.5 ps 0" + colour, {4, 5}, {}, range});
     }
-  return plot_png(png, "T_max against " + x.path + (n_seeds > 1 ? ", " + std::to_string(n_seeds) + " seeds per value" : ""),
+  return plot_png(png, "Maximum head tension against " + x.path + (n_seeds > 1 ? ", " + std::to_string(n_seeds) + " seeds per value" : ""),
                   {panel});
 }
 } // namespace geohybrid::apps

@@ -11,7 +11,7 @@
 // A member's status is finished (run now), kept (finished earlier with the same parameters_hash),
 // failed (message: why), stopped (by a signal, while it ran) or not run (a signal stopped the
 // sweep before it started). An "over seeds" row's is
-// "all N seeds", "K of N seeds" or "no result"; its seed column lists the seeds it averages, its
+// "all N seeds", "K of N seeds", "one run" (no seed swept) or "no result"; its seed column lists the seeds it averages, its
 // message the members that failed. The numbers come first, so that the columns a plot reads do
 // not move with a value that holds a comma (such a field is quoted).
 //
