@@ -20,8 +20,8 @@
 // one such value). An entry of one value is a plain override of the base input. Each value is checked
 // against the entry's own pattern when the sweep is read. 'Filling/seed' is the replicate
 // dimension: it is crossed with the other entries in either combination, and sweep.csv averages
-// over it (apps/sweep_results.h). The run-control entries (output directory, threads, checkpoint
-// interval, stop after steps) are not swept: they change no number (apps/parameters_hash.h).
+// over it (apps/sweep_results.h). The run-control entries (pullout_run_control_entries(),
+// apps/parameters_hash.h: output directory, threads, ...) are not swept: they change no number.
 #include "apps/pullout_command.h"
 
 #include <deal.II/base/parameter_handler.h>

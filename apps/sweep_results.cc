@@ -151,7 +151,8 @@ bool plot_sweep(const SweepDefinition &sweep, const std::filesystem::path &csv, 
       std::string label;
       const ParameterOverrides &values = sweep.members[first * n_seeds].values;
       for (std::size_t e = 1; e < sweep.n_varied(); ++e)
-        label += (label.empty() ? "" : ", ") + values[e].first + " = " + values[e].second;
+        if (sweep.entries[e].values.size() > 1) // an override of one value is every curve's
+          label += (label.empty() ? "" : ", ") + values[e].first + " = " + values[e].second;
       const std::string colour = " lc " + std::to_string(curve);
       const std::string range = rows(n_members + first, n_members + first + block - 1);
       panel.series.push_back({csv, x_column, 3, label.empty() ? "mean over the seeds" : label + ": mean", 1.0, 1.0,
