@@ -11,6 +11,9 @@
 //   ('mode = hybrid': particles round the sheet, the continuum elsewhere; one process)
 //   geohybrid coupling-test FILE.prm       the coupling's patch, wave and energy benchmarks for one method
 //   geohybrid compare DIR1 DIR2 ... [--output FILE.png]   pull-out curves of result directories in one PNG
+//   geohybrid sweep FILE.prm               pull-outs over a list or grid of values, resumable, T_max and its spread
+//   mpirun -np N geohybrid sweep FILE.prm  the same, the members dealt to the ranks
+//   geohybrid report DIR1 DIR2 ... [--output FILE.html]   one self-contained HTML page of results
 //   geohybrid COMMAND --print-parameters   every parameter of COMMAND with default, unit, doc
 //
 // Input files are read with deal.II's ParameterHandler (.prm or .json). Errors in the input stop
@@ -25,6 +28,9 @@
 #include "apps/pullout_command.h"
 #include "apps/pullout_seeds.h"
 #include "apps/rank_error.h"
+#include "apps/report_command.h"
+#include "apps/sweep_command.h"
+#include "apps/sweep_definition.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -58,6 +64,10 @@ const std::map<std::string, Command> &commands()
     {"pullout", {"pull-out test of a geosynthetic in the INSA tank: simple run-out or wrap-around (mode = dem, fem or hybrid)",
                  geohybrid::apps::declare_pullout_parameters,
                  [](const std::string &file, bool resume) { return geohybrid::apps::run_pullout_command(file, resume); }}},
+    {"sweep", {"pull-outs of a base input over a list or grid of values, one directory each, resumable; sweep.csv and "
+               "sweep.png of T_max and its spread over the seeds (under mpirun the members spread over the ranks)",
+               geohybrid::apps::declare_sweep_parameters,
+               [](const std::string &file, bool resume) { return geohybrid::apps::run_sweep_command(file, resume); }}},
     {"coupling-test", {"DEM-FEM coupling benchmarks for one method: ghost forces, reflected wave energy, energy drift",
                        geohybrid::apps::declare_coupling_test_parameters, geohybrid::apps::run_coupling_test_command}},
   };
@@ -98,6 +108,7 @@ void print_usage(std::ostream &out)
          "       geohybrid pullout FILE.prm --print-parameters-hash   (FILE checked as a run would, nothing\n"
          "                                              written; the hash its summary.json would hold)\n"
          "       geohybrid compare DIR1 DIR2 ... [--output FILE.png]   (pull-out curves in one PNG)\n"
+         "       geohybrid report DIR1 DIR2 ... [--output FILE.html]   (one self-contained HTML page of the results)\n"
          "       geohybrid --help\n\n"
          "--resume continues the run of FILE from its last checkpoint, OUTPUT/checkpoint.h5\n"
          "(written every 'Simulation/checkpoint interval' seconds, at the end, and when SIGINT or\n"
@@ -125,11 +136,13 @@ int main(int argc, char **argv)
       print_usage(std::cout);
       return argc < 2 ? 1 : 0;
     }
-  // compare reads result directories, not an input file: its own arguments.
-  if (!std::strcmp(argv[1], "compare"))
+  // compare and report read result directories, not an input file: their own arguments.
+  if (!std::strcmp(argv[1], "compare") || !std::strcmp(argv[1], "report"))
     try
       {
-        return geohybrid::apps::run_compare_command(std::vector<std::string>(argv + 2, argv + argc));
+        const std::vector<std::string> arguments(argv + 2, argv + argc);
+        return !std::strcmp(argv[1], "compare") ? geohybrid::apps::run_compare_command(arguments)
+                                                : geohybrid::apps::run_report_command(arguments);
       }
     catch (const std::exception &e)
       {
@@ -211,7 +224,7 @@ int main(int argc, char **argv)
         }
       // The commands whose loops stop cleanly on a signal (apps/interrupt.h); the others keep
       // the default action, which ends them at once.
-      if (!std::strcmp(argv[1], "dem") || !std::strcmp(argv[1], "pullout"))
+      if (!std::strcmp(argv[1], "dem") || !std::strcmp(argv[1], "pullout") || !std::strcmp(argv[1], "sweep"))
         geohybrid::apps::install_interrupt_handlers();
       if (n_seeds > 0)
         return geohybrid::apps::run_pullout_seeds(input_file, n_seeds, MPI_COMM_WORLD, resume);

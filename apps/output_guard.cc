@@ -40,7 +40,9 @@ const std::set<std::string> &fixed_names()
     "pullout_fields.h5", "pullout_fields.xdmf", "surface_uplift.csv", "surface_uplift.png",
     // biaxial, calibrate (its default fragment name), coupling-test
     "biaxial.png", "continuum_soil.prm", "calibration.csv", "calibrated_soil.prm", "energy_history.csv",
-    "wave_reflection.csv"};
+    "wave_reflection.csv",
+    // sweep
+    "sweep.csv", "sweep.png", "sweep.prm"};
   return names;
 }
 } // namespace

@@ -34,10 +34,7 @@ std::string trimmed(const std::string &s)
 }
 } // namespace
 
-namespace
-{
-/// The lines "Subsection/.../entry = value" of every entry of `prm`, in ParameterHandler's order.
-std::vector<std::pair<std::string, std::string>> resolved_entries(const dealii::ParameterHandler &prm)
+std::vector<std::pair<std::string, std::string>> parameter_entries(const dealii::ParameterHandler &prm)
 {
   // ShortPRM: the values without the documentation, so that rewording an entry's description
   // does not change the hash of every run. Its lines are "subsection NAME", "set NAME = VALUE"
@@ -72,15 +69,14 @@ std::vector<std::pair<std::string, std::string>> resolved_entries(const dealii::
     throw std::logic_error("canonical_parameters: subsection '" + path.back() + "' not closed in ParameterHandler's output");
   return entries;
 }
-} // namespace
 
 std::string canonical_parameters(const dealii::ParameterHandler &prm, const dealii::ParameterHandler &defaults,
                                  const std::vector<std::string> &excluded)
 {
-  const auto declared = resolved_entries(defaults);
+  const auto declared = parameter_entries(defaults);
   std::map<std::string, std::string> default_of(declared.begin(), declared.end());
   std::string canonical = std::string(numbers_version) + '\n';
-  for (const auto &[entry, value] : resolved_entries(prm))
+  for (const auto &[entry, value] : parameter_entries(prm))
     {
       if (std::find(excluded.begin(), excluded.end(), entry) != excluded.end())
         continue;

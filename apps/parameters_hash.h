@@ -9,6 +9,7 @@
 // committed summary holds its input's hash, and resumes a checkpoint only of the same input).
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dealii
@@ -23,6 +24,10 @@ std::uint64_t fnv1a_64(const std::string &text);
 
 /// Raised when a default changes the numbers of an input that does not set that entry.
 inline constexpr const char *numbers_version = "geohybrid numbers 2";
+
+/// Every entry of `prm` as ("Subsection/.../entry", value), in ParameterHandler's order
+/// (alphabetical within a subsection): the paths set_parameter() takes.
+std::vector<std::pair<std::string, std::string>> parameter_entries(const dealii::ParameterHandler &prm);
 
 /// numbers_version, then the entries of `prm` whose values differ from those of `defaults` (the
 /// same declarations, nothing parsed), one line "Subsection/.../entry = value" each, in

@@ -22,7 +22,8 @@ bool plot_png(const std::filesystem::path &png, const std::string &title, const 
         for (std::size_t k = 0; k < panel.series.size(); ++k)
           {
             const PlotSeries &s = panel.series[k];
-            gp << (k ? ", " : "") << "'" << s.csv.string() << "' using ($" << s.x_column << "*" << s.x_scale << "):($"
+            gp << (k ? ", " : "") << "'" << s.csv.string() << "'" << (s.every.empty() ? "" : " every " + s.every)
+               << " using ($" << s.x_column << "*" << s.x_scale << "):($"
                << s.y_column << "*" << s.y_scale << ")";
             for (std::size_t e = 0; e < s.extra_columns.size(); ++e)
               gp << ":($" << s.extra_columns[e] << "*" << (e < s.extra_scales.size() ? s.extra_scales[e] : s.y_scale) << ")";

@@ -18,6 +18,9 @@ struct PlotSeries
   /// and a line width for 'vectors'), each scaled by its extra_scales entry, y_scale if none.
   std::vector<int> extra_columns = {};
   std::vector<double> extra_scales = {};
+  /// gnuplot's 'every' clause, to plot some rows of a file ("::2::5": the third to the sixth row
+  /// after the header); empty: every row.
+  std::string every = "";
 };
 
 struct PlotPanel

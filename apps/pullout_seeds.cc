@@ -7,6 +7,7 @@
 #include "pullout_input.h"
 #include "rank_error.h"
 #include "run_directory.h"
+#include "spread.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -21,32 +22,6 @@
 
 namespace geohybrid::apps
 {
-namespace
-{
-/// Mean, extremes and sample standard deviation (n - 1) of a few values.
-struct Spread
-{
-  double mean = 0.0, min = 0.0, max = 0.0, std = 0.0;
-};
-
-Spread spread_of(const std::vector<double> &v)
-{
-  Spread s;
-  s.min = *std::min_element(v.begin(), v.end());
-  s.max = *std::max_element(v.begin(), v.end());
-  for (const double x : v)
-    s.mean += x / static_cast<double>(v.size());
-  if (v.size() > 1)
-    {
-      double squares = 0.0;
-      for (const double x : v)
-        squares += (x - s.mean) * (x - s.mean);
-      s.std = std::sqrt(squares / static_cast<double>(v.size() - 1));
-    }
-  return s;
-}
-} // namespace
-
 int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm communicator, bool resume)
 {
   const bool with_mpi = dealii::Utilities::MPI::job_supports_mpi();

@@ -3,7 +3,8 @@
 # from anywhere else. Needs root (or sudo) only when something must be installed.
 set -euo pipefail
 packages=(build-essential cmake libdeal.ii-dev libeigen3-dev petsc-dev libhdf5-dev libgtest-dev
-          openmpi-bin gnuplot-nox nlohmann-json3-dev ${GEOHYBRID_EXTRA_PACKAGES:-})
+          openmpi-bin gnuplot-nox nlohmann-json3-dev
+          chromium ${GEOHYBRID_EXTRA_PACKAGES:-}) # chromium: the report test loads its page headless
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

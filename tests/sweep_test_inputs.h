@@ -1,0 +1,40 @@
+#pragma once
+// The inputs of the sweep and report tests (test_app_sweep.cc, test_app_report.cc): a fem-mode
+// base input on a small tank, whose members take about a second each, and a sweep file over it.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace geohybrid::testing
+{
+/// A run-out in a 0.6 m x 1 m tank of elastic soil (E = 20 MPa, nu = 0.3, 15.2 kN/m3), 50 mm
+/// cells, the sheet (GT230, delta = 25.6 deg, nodes every 25 mm) at H = 0.775 m over L = 0.55 m,
+/// pulled 4 mm at 4 mm/s: test_app_pullout_fem.cc's tank, whose T_max reaches the interface's
+/// geostatic limit 2 gamma H tan(delta) L.
+inline std::string write_fem_base_input(const std::filesystem::path &directory)
+{
+  const std::filesystem::path file = directory / "base.prm";
+  std::ofstream(file) << "set output directory = " << (directory / "base_out").string() << "\n"
+                      << "set mode = fem\n"
+                      << "subsection Tank\n  set length = 0.6\n  set fill height = 1.0\nend\n"
+                      << "subsection Anchorage\n  set H = 0.775\n  set L = 0.55\nend\n"
+                      << "subsection Pull\n  set rate = 0.004\n  set final displacement = 0.004\n"
+                      << "  set record interval = 0.0005\n  set ramp displacement = 0\n"
+                      << "  set tension profiles at = 0.002, 0.004\nend\n"
+                      << "subsection Continuum\n  set cell size = 0.05\n  set sheet node spacing = 0.025\n"
+                      << "  set soil model = linear elastic\n  set Young modulus = 20e6\n  set Poisson ratio = 0.3\nend\n";
+  return file.string();
+}
+
+/// A sweep file beside the base input (named relative to it), into DIRECTORY/sweep, with `lines`
+/// inside its subsection Sweep and `top` at its top level.
+inline std::string write_sweep_input(const std::filesystem::path &directory, const std::string &base_name,
+                                     const std::string &lines, const std::string &top = "")
+{
+  const std::filesystem::path file = directory / "sweep_input.prm";
+  std::ofstream(file) << "set base input = " << base_name << "\n"
+                      << "set output directory = " << (directory / "sweep").string() << "\n"
+                      << top << "subsection Sweep\n" << lines << "end\n";
+  return file.string();
+}
+} // namespace geohybrid::testing
