@@ -36,7 +36,7 @@ const std::set<std::string> &fixed_names()
     "particles.xdmf",
     // pullout
     "pullout_curve.csv", "pullout_curve.png", "pullout_curve_sheet.csv", "sheet_displacements.csv",
-    "sheet_tension.csv", "experimental_T_max.csv", "pullout_forces.csv", "coupling_diagnostics.csv",
+    "sheet_tension.csv", "experimental_T_max.csv", "reference_curve.csv", "pullout_forces.csv", "coupling_diagnostics.csv",
     "pullout_fields.h5", "pullout_fields.xdmf", "surface_uplift.csv", "surface_uplift.png",
     // biaxial, calibrate (its default fragment name), coupling-test
     "biaxial.png", "continuum_soil.prm", "calibration.csv", "calibrated_soil.prm", "energy_history.csv",

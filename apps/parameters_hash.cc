@@ -100,7 +100,8 @@ std::string parameters_hash(const dealii::ParameterHandler &prm, const dealii::P
 const std::vector<std::string> &pullout_run_control_entries()
 {
   static const std::vector<std::string> entries{"output directory", "threads", "checkpoint interval", "stop after steps",
-                                                 "Filling/lift cache directory"};
+                                                 "Filling/lift cache directory", "Output/demonstration",
+                                                 "Output/full-size runs"};
   return entries;
 }
 

@@ -6,28 +6,43 @@
 
 namespace geohybrid::apps
 {
+namespace
+{
+/// `text` as a gnuplot single-quoted string: a quote inside is doubled (a title or a path with an
+/// apostrophe would otherwise end the string and break the script).
+std::string quoted(const std::string &text)
+{
+  std::string q = "'";
+  for (const char c : text)
+    q += c == '\'' ? std::string("''") : std::string(1, c);
+  return q + "'";
+}
+} // namespace
+
 bool plot_png(const std::filesystem::path &png, const std::string &title, const std::vector<PlotPanel> &panels)
 {
   const std::filesystem::path script = png.string() + ".gp";
   {
     std::ofstream gp(script);
     gp << "set terminal pngcairo size 900," << 420 * panels.size() << " font ',11'\n"
-       << "set output '" << png.string() << "'\n"
+       << "set output " << quoted(png.string()) << "\n"
+       // Titles, labels and paths as written: no subscripts from their underscores.
+       << "set termoption noenhanced\n"
        << "set datafile separator ','\nset key autotitle columnhead\nset grid\n"
-       << "set multiplot layout " << panels.size() << ",1 title '" << title << "'\n";
+       << "set multiplot layout " << panels.size() << ",1 title " << quoted(title) << "\n";
     for (const PlotPanel &panel : panels)
       {
-        gp << panel.settings << (panel.settings.empty() ? "" : "\n") << "set xlabel '" << panel.x_label
-           << "'\nset ylabel '" << panel.y_label << "'\nplot ";
+        gp << panel.settings << (panel.settings.empty() ? "" : "\n") << "set xlabel " << quoted(panel.x_label)
+           << "\nset ylabel " << quoted(panel.y_label) << "\nplot ";
         for (std::size_t k = 0; k < panel.series.size(); ++k)
           {
             const PlotSeries &s = panel.series[k];
-            gp << (k ? ", " : "") << "'" << s.csv.string() << "'" << (s.every.empty() ? "" : " every " + s.every)
+            gp << (k ? ", " : "") << quoted(s.csv.string()) << (s.every.empty() ? "" : " every " + s.every)
                << " using ($" << s.x_column << "*" << s.x_scale << "):($"
                << s.y_column << "*" << s.y_scale << ")";
             for (std::size_t e = 0; e < s.extra_columns.size(); ++e)
               gp << ":($" << s.extra_columns[e] << "*" << (e < s.extra_scales.size() ? s.extra_scales[e] : s.y_scale) << ")";
-            gp << " with " << s.style << " title '" << s.label << "'";
+            gp << " with " << s.style << " title " << quoted(s.label);
           }
         gp << "\n";
         if (!panel.settings.empty())

@@ -203,6 +203,14 @@ void declare_pullout_parameters(ParameterHandler &prm)
                     "Head displacements at which the grains' displacements since the start of the pull, the "
                     "contact-force network, an HDF5/XDMF snapshot and the surface uplift are written (the "
                     "paper's Figures 10-12); empty = none; dem mode only (hybrid mode writes none yet) [m]");
+  prm.declare_entry("demonstration", "", Patterns::Anything(),
+                    "Empty: the run is a result. Otherwise it is only a demonstration of the workflow (made small or "
+                    "soft to run in minutes), and this says why: it heads the plot and is written to summary.json, "
+                    "so that its T_max is not taken for the model's answer [-]");
+  prm.declare_entry("full-size runs", "", Patterns::Anything(),
+                    "Directory of finished runs of the same case at full size, one per seed (seed1, seed2, ... as "
+                    "validation/runs/CASE, or seed_1, ... of 'pullout --seeds'), relative to the working directory: "
+                    "their mean curve is drawn beside this run's and their T_max written to summary.json; empty = none");
   prm.declare_entry("stress band", "0.05", Patterns::Double(1e-6),
                     "Height of the soil band above the sheet where the Love-Weber vertical stress is measured; dem "
                     "and hybrid modes [m]");
@@ -311,8 +319,11 @@ PullOutInput parse_pullout(ParameterHandler &prm, const std::string &where, bool
       if (!(value >> T) || !(value >> std::ws).eof() || !(T > 0.0))
         throw std::invalid_argument(where + ": 'Output/experimental T_max' = '" + measured +
                                     "' must be a positive number [kN/m] or empty");
-      in.experimental_T_max = 1e3 * T;
+      in.references.experimental_T_max = 1e3 * T;
     }
+  in.references.demonstration = prm.get("demonstration");
+  if (const std::string full = prm.get("full-size runs"); full.find_first_not_of(" \t") != std::string::npos)
+    in.references.full_size = read_reference_runs(full, where + ": parameter 'Output/full-size runs' = '" + full + "'");
   in.stress_band = prm.get_double("stress band");
   for (const std::string &item : dealii::Utilities::split_string_list(prm.get("field outputs at"), ','))
     in.fields_at.push_back(std::stod(item));
@@ -521,14 +532,14 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   forces->finish();
 
   // 3. The plot, with the experimental T_max as a horizontal line if given.
-  output->finish("DEM", in.experimental_T_max, in.pull.final_displacement);
+  output->finish("DEM", in.references, in.pull.final_displacement);
   const double T_max = output->max_head_tension(), u_at_T_max = output->head_displacement_at_max();
   if (checkpoint_interval > 0.0)
     save_checkpoint(); // the finished pull: a later --resume has nothing left to do but the files
 
   const double wall_time = earlier_wall_time + seconds();
   Summary summary;
-  output->fill_summary(summary, "dem", anchorage_name(g), in.experimental_T_max);
+  output->fill_summary(summary, "dem", anchorage_name(g), in.references);
   summary.set("n_particles", static_cast<double>(system.particles().n_bodies()));
   set_dem_sheet_summary(summary, system.sheets()[0], tank.sheet_level, actual_cover, gamma_H, before, one_face);
   summary.set("time_step_s", system.time_step());
@@ -556,8 +567,8 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   summary.write(out / "summary.json");
   std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m (" << number(T_max * g.sheet_width / 1e3, 4)
             << " kN for b = " << number(g.sheet_width, 3) << " m) at " << number(1e3 * u_at_T_max, 3) << " mm"
-            << (in.experimental_T_max ? "; experiment " + number(*in.experimental_T_max / 1e3, 4) + " kN/m" : std::string())
-            << "; " << number(wall_time, 4) << " s\nresults in " << out.string() << '\n';
+            << experiment_text(in.references) << "; " << number(wall_time, 4) << " s\n"
+            << demonstration_lines(in.references) << "results in " << out.string() << '\n';
   return 0;
 }
 /// The input of FILE with `overrides`, read and checked as every run reads it, then run; with

@@ -360,7 +360,7 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
         // does not look like a finished run (apps/run_directory.h).
         on_rank_zero(comm, [&] {
           progress->stop(); // where it stopped, not 100 %
-          output->finish("FEM (implicit, stopped)", in.experimental_T_max, in.pull.final_displacement);
+          output->finish("FEM (implicit, stopped)", in.references, in.pull.final_displacement);
         });
         throw std::runtime_error(where + ": the implicit solver stopped at head displacement " +
                                  number(1e3 * failure.last_converged_time(), 4) +
@@ -379,10 +379,10 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
 
   on_rank_zero(comm, [&] {
     progress->finish();
-    output->finish(c.implicit_solver ? "FEM (implicit)" : "FEM", in.experimental_T_max, in.pull.final_displacement);
+    output->finish(c.implicit_solver ? "FEM (implicit)" : "FEM", in.references, in.pull.final_displacement);
     const double wall_time = seconds(), T_max = output->max_head_tension();
     Summary summary;
-    output->fill_summary(summary, "fem", anchorage_name(g), in.experimental_T_max);
+    output->fill_summary(summary, "fem", anchorage_name(g), in.references);
     summary.set("n_particles", 0.0);
     summary.set("n_cells", static_cast<double>(result.n_cells));
     summary.set("element_degree", static_cast<double>(c.problem.element_degree));
@@ -422,10 +422,8 @@ int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const st
               << number(T_max * g.sheet_width / 1e3, 4) << " kN for b = " << number(g.sheet_width, 3) << " m) at "
               << number(1e3 * output->head_displacement_at_max(), 3) << " mm; geostatic interface limit "
               << number(result.geostatic_interface_limit / 1e3, 4) << " kN/m"
-              << (in.experimental_T_max ? "; experiment " + number(*in.experimental_T_max / 1e3, 4) + " kN/m"
-                                        : std::string())
-              << "; " << result.n_steps << " steps, " << number(wall_time, 4) << " s\nresults in " << out.string()
-              << '\n';
+              << experiment_text(in.references) << "; " << result.n_steps << " steps, " << number(wall_time, 4)
+              << " s\n" << demonstration_lines(in.references) << "results in " << out.string() << '\n';
   });
   return 0;
 }

@@ -481,12 +481,12 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   const std::size_t n_points = diagnostics.n_rows();
 
   // 3. The plot, then summary.json last.
-  output->finish("hybrid DEM-FEM", in.experimental_T_max, in.pull.final_displacement);
+  output->finish("hybrid DEM-FEM", in.references, in.pull.final_displacement);
   if (checkpoint_interval > 0.0)
     save_checkpoint(); // the finished pull: a later --resume has nothing left to do but the files
   const double T_max = output->max_head_tension(), wall_time = earlier_wall_time + seconds();
   Summary summary;
-  output->fill_summary(summary, "hybrid", anchorage_name(g), in.experimental_T_max);
+  output->fill_summary(summary, "hybrid", anchorage_name(g), in.references);
   summary.set("n_particles", static_cast<double>(s.n_particles));
   summary.set("n_particles_full_tank", static_cast<double>(in.tank.filling.n_particles));
   summary.set("coupling_method", method_name(spec.region.method));
@@ -528,9 +528,8 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   std::cout << "geohybrid pullout: T_max = " << number(T_max / 1e3, 4) << " kN/m ("
             << number(T_max * g.sheet_width / 1e3, 4) << " kN for b = " << number(g.sheet_width, 3) << " m) at "
             << number(1e3 * output->head_displacement_at_max(), 3) << " mm"
-            << (in.experimental_T_max ? "; experiment " + number(*in.experimental_T_max / 1e3, 4) + " kN/m"
-                                      : std::string())
-            << "; " << number(wall_time, 4) << " s\nresults in " << out.string() << '\n';
+            << experiment_text(in.references) << "; " << number(wall_time, 4) << " s\n"
+            << demonstration_lines(in.references) << "results in " << out.string() << '\n';
   return 0;
 }
 } // namespace geohybrid::apps

@@ -2,6 +2,7 @@
 // The input of `geohybrid pullout` as read from its file, shared by the soil models: the tank, the
 // anchorage, the sheet and the pull (dem/pullout_tank.h's plain data, which the continuum mode
 // maps onto fem::PulloutProblemParameters), and the outputs asked for.
+#include "apps/reference_runs.h"
 #include "dem/pullout_tank.h"
 
 #include <deal.II/base/parameter_handler.h>
@@ -18,7 +19,7 @@ struct PullOutInput
   dem::PullSpec pull;
   std::vector<double> profiles_at;
   std::vector<double> fields_at; ///< head displacements of the field outputs (dem mode) [m]
-  std::optional<double> experimental_T_max; ///< [N/m]
+  CurveReferences references; ///< the experiment, the case at full size, a demonstration
   double stress_band = 0.05;
   /// Quality warnings found in the input (apps/run_health.h), for the summary's "warnings".
   std::vector<std::string> warnings;

@@ -112,28 +112,48 @@ void PulloutOutput::add_profile(double u, const std::vector<SheetTensionRow> &ro
   flush();
 }
 
-void PulloutOutput::finish(const std::string &label, const std::optional<double> &experimental_T_max,
-                           double final_displacement)
+void PulloutOutput::finish(const std::string &label, const CurveReferences &references, double final_displacement)
 {
   flush();
-  std::vector<PlotSeries> series{{directory_ / "pullout_curve.csv", 1, 2, label, 1e3, 1.0}};
-  if (experimental_T_max)
+  std::vector<PlotSeries> series{{directory_ / "pullout_curve.csv", 1, 2,
+                                  references.demonstration.empty() ? label : label + ", demonstration", 1e3, 1.0}};
+  const auto check = [](std::ofstream &f, const std::filesystem::path &file) {
+    if (!f.flush())
+      throw std::runtime_error("cannot write " + file.string() + " (is the disk full, or the directory not writable?)");
+  };
+  if (const auto &full = references.full_size)
+    {
+      const std::filesystem::path file = directory_ / "reference_curve.csv";
+      std::ofstream f(file);
+      f << "head_displacement_m,head_tension_kN_per_m\n";
+      for (const std::array<double, 2> &row : full->mean_curve)
+        f << number(row[0]) << ',' << number(row[1]) << '\n';
+      check(f, file);
+      series.push_back({file, 1, 2,
+                        "full size, mean of " + std::to_string(full->seeds.size()) + " seeds (" +
+                          full->directory.string() + "), T_max " + number(full->T_max.mean, 4) + " kN/m",
+                        1e3, 1.0, "lines lw 2 dt 1", {}});
+    }
+  if (const auto &T = references.experimental_T_max)
     {
       const std::filesystem::path line = directory_ / "experimental_T_max.csv";
       std::ofstream f(line);
-      f << "head_displacement_m,T_max_kN_per_m\n0," << number(*experimental_T_max / 1e3) << '\n'
-        << number(final_displacement) << ',' << number(*experimental_T_max / 1e3) << '\n';
-      if (!f.flush())
-        throw std::runtime_error("cannot write " + line.string() + " (is the disk full, or the directory not writable?)");
+      f << "head_displacement_m,T_max_kN_per_m\n0," << number(*T / 1e3) << '\n'
+        << number(std::max(final_displacement, references.full_size ? references.full_size->mean_curve.back()[0] : 0.0))
+        << ',' << number(*T / 1e3) << '\n';
+      check(f, line);
       series.push_back({line, 1, 2, "experiment, T_max", 1e3, 1.0});
     }
-  plot_png(directory_ / "pullout_curve.png", "Pull-out, head tension",
-           {{"head displacement [mm]", "head tension [kN/m]", series}});
+  const std::string title = references.demonstration.empty()
+                              ? std::string("Pull-out, head tension")
+                              : "DEMONSTRATION, not a result: " + references.demonstration;
+  plot_png(directory_ / "pullout_curve.png", title, {{"head displacement [mm]", "head tension [kN/m]", series}});
 }
 
 void PulloutOutput::fill_summary(Summary &summary, const std::string &mode, const std::string &anchorage,
-                                 const std::optional<double> &experimental_T_max) const
+                                 const CurveReferences &references) const
 {
+  const std::optional<double> &experimental_T_max = references.experimental_T_max;
   summary.set("command", "pullout");
   summary.set("mode", mode);
   summary.set("anchorage", anchorage);
@@ -144,6 +164,16 @@ void PulloutOutput::fill_summary(Summary &summary, const std::string &mode, cons
     {
       summary.set("experimental_T_max_kN_per_m", *experimental_T_max / 1e3);
       summary.set("T_max_difference_percent", 100.0 * (T_max_ / *experimental_T_max - 1.0));
+    }
+  if (!references.demonstration.empty())
+    summary.set("demonstration", references.demonstration);
+  if (const auto &full = references.full_size)
+    {
+      summary.set("full_size_runs", full->directory.string());
+      summary.set("full_size_n_seeds", static_cast<double>(full->seeds.size()));
+      summary.set("full_size_T_max_kN_per_m", full->T_max.mean);
+      summary.set("full_size_T_max_std_kN_per_m", full->T_max.std);
+      summary.set("full_size_T_max_of_mean_curve_kN_per_m", full->T_max_of_mean_curve);
     }
 }
 

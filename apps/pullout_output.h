@@ -9,6 +9,7 @@
 // and the summary keys every mode shares (T_max and its displacement, the experiment's value and
 // the difference). Each mode adds its own keys and writes summary.json last. Under MPI only one
 // rank (the caller chooses, rank 0) owns a PulloutOutput.
+#include "apps/reference_runs.h"
 #include "apps/run_directory.h"
 
 #include "dem/checkpoint.h"
@@ -59,17 +60,19 @@ public:
   /// Writes the profile once for each of 'tension profiles at' reached by `head_displacement`.
   void add_profile(double head_displacement, const std::vector<SheetTensionRow> &rows);
 
-  /// Draws pullout_curve.png: the curve labelled `label`, and the experimental T_max [N/m] as a
-  /// line over [0, final_displacement] if given.
-  void finish(const std::string &label, const std::optional<double> &experimental_T_max, double final_displacement);
+  /// Draws pullout_curve.png: the curve labelled `label`, the experimental T_max as a line over
+  /// [0, final_displacement] if given, the full-size runs' mean curve (reference_curve.csv) if
+  /// given, and for a demonstration a title that says so.
+  void finish(const std::string &label, const CurveReferences &references, double final_displacement);
 
   double max_head_tension() const { return T_max_; }             ///< [N/m]
   double head_displacement_at_max() const { return u_at_T_max_; } ///< [m]
 
   /// The keys every mode writes: command, mode, anchorage, T_max (per metre and for b), its head
-  /// displacement, and the experiment's T_max with the difference in % when given.
+  /// displacement, the experiment's T_max with the difference in % when given, and for a
+  /// demonstration or a full-size reference, "demonstration" and the reference's figures.
   void fill_summary(Summary &summary, const std::string &mode, const std::string &anchorage,
-                    const std::optional<double> &experimental_T_max) const;
+                    const CurveReferences &references) const;
 
 private:
   /// Flushes the four CSV files; throws std::runtime_error naming the file that failed.
