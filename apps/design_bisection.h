@@ -73,7 +73,9 @@ public:
       }
     else
       (met ? high_ : low_) = value;
-    if (outcome_ == Outcome::running && high_ - low_ <= tolerance_)
+    // A relative slack of 1e-9: 0.08 - 0.06 is 0.020000000000000004, and a bracket of the tolerance
+    // in decimal is within it.
+    if (outcome_ == Outcome::running && high_ - low_ <= tolerance_ * (1.0 + 1e-9))
       outcome_ = Outcome::found;
   }
 

@@ -90,7 +90,7 @@ bool plot_design(const DesignDefinition &design, const DesignAnswer &answer, boo
       panel.series.push_back({csv, 2, 8, "mean - " + number(design.margin_factor, 4) + " std", 1.0, 1.0,
                               "points pt 9 ps 1.4 lc rgb 'dark-orange'"});
     }
-  return plot_png(png, "geohybrid design: " + design.entry + " for T_max >= " + number(design.target_kN, 4) + " kN/m" +
+  return plot_png(png, "geohybrid design: " + design.entry + " for a maximum head tension of " + number(design.target_kN, 4) + " kN/m" +
                          (with_seeds && design.margin_factor > 0.0 ? " (mean - " + number(design.margin_factor, 4) + " std)" : ""),
                   {panel});
 }
