@@ -13,6 +13,7 @@
 //   geohybrid compare DIR1 DIR2 ... [--output FILE.png]   pull-out curves of result directories in one PNG
 //   geohybrid sweep FILE.prm               pull-outs over a list or grid of values, resumable, T_max and its spread
 //   mpirun -np N geohybrid sweep FILE.prm  the same, the members dealt to the ranks
+//   geohybrid design FILE.prm              the smallest B (or L) whose T_max reaches a target, by bisection over sweeps
 //   geohybrid report DIR1 DIR2 ... [--output FILE.html]   one self-contained HTML page of results
 //   geohybrid COMMAND --print-parameters   every parameter of COMMAND with default, unit, doc
 //
@@ -22,6 +23,8 @@
 #include "apps/calibrate_command.h"
 #include "apps/compare_command.h"
 #include "apps/coupling_test_command.h"
+#include "apps/design_command.h"
+#include "apps/design_definition.h"
 #include "apps/dem_command.h"
 #include "apps/interrupt.h"
 #include "apps/output_guard.h"
@@ -68,6 +71,11 @@ const std::map<std::string, Command> &commands()
                "sweep.png of T_max and its spread over the seeds (under mpirun the members spread over the ranks)",
                geohybrid::apps::declare_sweep_parameters,
                [](const std::string &file, bool resume) { return geohybrid::apps::run_sweep_command(file, resume); }}},
+    {"design", {"the smallest B (wrap-around) or L in a bracket whose mean - k std of T_max over the seeds reaches a "
+                "target, by bisection over sweeps (resumable; under mpirun each sweep's runs spread over the ranks); "
+                "design.csv, design.png, summary.json",
+                geohybrid::apps::declare_design_parameters,
+                [](const std::string &file, bool resume) { return geohybrid::apps::run_design_command(file, resume); }}},
     {"coupling-test", {"DEM-FEM coupling benchmarks for one method: ghost forces, reflected wave energy, energy drift",
                        geohybrid::apps::declare_coupling_test_parameters, geohybrid::apps::run_coupling_test_command}},
   };
@@ -224,7 +232,8 @@ int main(int argc, char **argv)
         }
       // The commands whose loops stop cleanly on a signal (apps/interrupt.h); the others keep
       // the default action, which ends them at once.
-      if (!std::strcmp(argv[1], "dem") || !std::strcmp(argv[1], "pullout") || !std::strcmp(argv[1], "sweep"))
+      if (!std::strcmp(argv[1], "dem") || !std::strcmp(argv[1], "pullout") || !std::strcmp(argv[1], "sweep") ||
+          !std::strcmp(argv[1], "design"))
         geohybrid::apps::install_interrupt_handlers();
       if (n_seeds > 0)
         return geohybrid::apps::run_pullout_seeds(input_file, n_seeds, MPI_COMM_WORLD, resume);

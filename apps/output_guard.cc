@@ -42,7 +42,9 @@ const std::set<std::string> &fixed_names()
     "biaxial.png", "continuum_soil.prm", "calibration.csv", "calibrated_soil.prm", "energy_history.csv",
     "wave_reflection.csv",
     // sweep
-    "sweep.csv", "sweep.png", "sweep.prm"};
+    "sweep.csv", "sweep.png", "sweep.prm",
+    // design (its values' sweeps are directories of their own)
+    "design.csv", "design.png", "design.prm", "design_base.prm"};
   return names;
 }
 } // namespace

@@ -609,10 +609,10 @@ int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm com
   return read_and_run(input_file, resume, communicator, overrides, nullptr);
 }
 
-std::string check_pullout_input(const std::string &input_file, MPI_Comm communicator)
+std::string check_pullout_input(const std::string &input_file, MPI_Comm communicator, const ParameterOverrides &overrides)
 {
   std::string hash;
-  read_and_run(input_file, false, communicator, {}, &hash);
+  read_and_run(input_file, false, communicator, overrides, &hash);
   return hash;
 }
 } // namespace geohybrid::apps

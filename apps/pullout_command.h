@@ -27,5 +27,7 @@ int run_pullout_command(const std::string &input_file, bool resume, MPI_Comm com
 /// `geohybrid pullout FILE --print-parameters-hash`: reads and checks FILE as a run of it would,
 /// refusing what the run refuses before its first file, writes nothing, and returns the
 /// parameters_hash its summary.json would hold (apps/parameters_hash.h). Throws as the run would.
-std::string check_pullout_input(const std::string &input_file, MPI_Comm communicator = MPI_COMM_WORLD);
+/// With `overrides`, the input as a run with them reads it (`geohybrid design` checks its ends so).
+std::string check_pullout_input(const std::string &input_file, MPI_Comm communicator = MPI_COMM_WORLD,
+                                const ParameterOverrides &overrides = {});
 } // namespace geohybrid::apps

@@ -104,13 +104,18 @@ MemberOutcome run_member(const SweepDefinition &sweep, const SweepMember &member
 
 int run_sweep_command(const std::string &input_file, bool /*resume*/, MPI_Comm communicator)
 {
+  dealii::ParameterHandler prm;
+  declare_sweep_parameters(prm);
+  const SweepDefinition sweep = parse_sweep(input_file, prm);
+  return run_sweep(sweep, prm, communicator).status;
+}
+
+SweepRun run_sweep(const SweepDefinition &sweep, const dealii::ParameterHandler &prm, MPI_Comm communicator)
+{
   const bool with_mpi = dealii::Utilities::MPI::job_supports_mpi();
   const unsigned int rank = with_mpi ? dealii::Utilities::MPI::this_mpi_process(communicator) : 0;
   const unsigned int n_ranks = with_mpi ? dealii::Utilities::MPI::n_mpi_processes(communicator) : 1;
   const auto start_time = std::chrono::steady_clock::now();
-  dealii::ParameterHandler prm;
-  declare_sweep_parameters(prm);
-  const SweepDefinition sweep = parse_sweep(input_file, prm);
   const fs::path out = sweep.output_directory;
 
   // Rank 0 prepares the directory; its refusal stops every rank. A single run's directory is not
@@ -173,9 +178,11 @@ int run_sweep_command(const std::string &input_file, bool /*resume*/, MPI_Comm c
     }
 
   unsigned int n_failed = 0;
+  SweepRun run;
   if (rank == 0)
     {
-      std::vector<MemberOutcome> outcomes(sweep.members.size());
+      std::vector<MemberOutcome> &outcomes = run.outcomes;
+      outcomes.resize(sweep.members.size());
       for (const std::vector<std::string> &from_rank : gathered)
         for (const std::string &record : from_rank)
           {
@@ -219,6 +226,7 @@ int run_sweep_command(const std::string &input_file, bool /*resume*/, MPI_Comm c
                       "before the sweep's end: the members that finished are kept in " + out.string() +
                         " (sweep.csv lists them); the same command continues the others",
                       true);
-  return n_failed > 0 ? 1 : 0;
+  run.status = n_failed > 0 ? 1 : 0;
+  return run;
 }
 } // namespace geohybrid::apps

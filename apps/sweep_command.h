@@ -17,9 +17,13 @@
 // sweep.csv; the others go on, and the exit status is then 1. A SIGINT or SIGTERM stops the
 // running members as a pull-out stops (a checkpoint to resume from); no other member starts,
 // sweep.csv lists what finished, and the same command continues the sweep.
+#include "apps/sweep_definition.h"
+#include "apps/sweep_results.h"
+
 #include <mpi.h>
 
 #include <string>
+#include <vector>
 
 namespace geohybrid::apps
 {
@@ -28,4 +32,15 @@ namespace geohybrid::apps
 /// continues the one in its directory. Throws std::runtime_error for a bad sweep file (before
 /// anything is written) and Interrupted after a signal.
 int run_sweep_command(const std::string &input_file, bool resume, MPI_Comm communicator = MPI_COMM_WORLD);
+
+struct SweepRun
+{
+  int status = 0;                      ///< 0 if every member finished, 1 if one failed (every rank)
+  std::vector<MemberOutcome> outcomes; ///< per member, in the sweep's order: on rank 0 only
+};
+
+/// The sweep of `sweep` (made by parse_sweep or make_sweep from `prm`, which is written as
+/// sweep.prm) on the ranks of `communicator` (collective): what run_sweep_command does once its
+/// file is read. `geohybrid design` runs each of its steps so.
+SweepRun run_sweep(const SweepDefinition &sweep, const dealii::ParameterHandler &prm, MPI_Comm communicator);
 } // namespace geohybrid::apps

@@ -17,19 +17,6 @@ namespace
 using dealii::ParameterHandler;
 namespace Patterns = dealii::Patterns;
 
-/// The pull-out's entries a sweep may vary: all but its run-control entries.
-std::vector<std::string> sweepable_entries()
-{
-  ParameterHandler pullout;
-  declare_pullout_parameters(pullout);
-  const std::vector<std::string> &excluded = pullout_run_control_entries();
-  std::vector<std::string> paths;
-  for (const auto &[path, value] : parameter_entries(pullout))
-    if (std::find(excluded.begin(), excluded.end(), path) == excluded.end())
-      paths.push_back(path);
-  return paths;
-}
-
 std::vector<std::string> split_path(const std::string &path)
 {
   std::vector<std::string> parts;
@@ -70,15 +57,42 @@ std::string name_part(const std::string &text)
   return part;
 }
 
-/// Resolved like an 'include': beside the sweep file first, then from the working directory.
-std::string resolve_base_input(const std::string &sweep_file, const std::string &base)
+} // namespace
+
+std::vector<std::string> sweepable_entries()
 {
-  const std::filesystem::path beside = std::filesystem::path(sweep_file).parent_path() / base;
+  ParameterHandler pullout;
+  declare_pullout_parameters(pullout);
+  const std::vector<std::string> &excluded = pullout_run_control_entries();
+  std::vector<std::string> paths;
+  for (const auto &[path, value] : parameter_entries(pullout))
+    if (std::find(excluded.begin(), excluded.end(), path) == excluded.end())
+      paths.push_back(path);
+  return paths;
+}
+
+std::string resolve_base_input(const std::string &input_file, const std::string &base)
+{
+  const std::filesystem::path beside = std::filesystem::path(input_file).parent_path() / base;
   if (std::filesystem::path(base).is_relative() && std::filesystem::is_regular_file(beside))
     return beside.lexically_normal().string();
   return base;
 }
-} // namespace
+
+void declare_pullout_entry_texts(ParameterHandler &prm, const std::string &head, const std::string &tail)
+{
+  for (const std::string &path : sweepable_entries())
+    {
+      const std::vector<std::string> parts = split_path(path);
+      for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+        prm.enter_subsection(parts[k]);
+      prm.declare_entry(parts.back(), "", Patterns::Anything(),
+                        head + " of the pull-out's entry '" + path + "' (geohybrid pullout --print-parameters gives "
+                        "its meaning)" + tail);
+      for (std::size_t k = 0; k + 1 < parts.size(); ++k)
+        prm.leave_subsection();
+    }
+}
 
 void declare_sweep_parameters(ParameterHandler &prm)
 {
@@ -93,24 +107,19 @@ void declare_sweep_parameters(ParameterHandler &prm)
                     "together (the entries then have as many values each). 'Filling/seed' is crossed with the "
                     "others either way: it is the replicate dimension, averaged over in sweep.csv");
   prm.enter_subsection("Sweep");
-  for (const std::string &path : sweepable_entries())
-    {
-      const std::vector<std::string> parts = split_path(path);
-      for (std::size_t k = 0; k + 1 < parts.size(); ++k)
-        prm.enter_subsection(parts[k]);
-      prm.declare_entry(parts.back(), "", Patterns::Anything(),
-                        "Values of the pull-out's entry '" + path + "' (geohybrid pullout --print-parameters gives "
-                        "its meaning), separated by commas (by semicolons if a value is itself a list); empty: "
-                        "the base input's value");
-      for (std::size_t k = 0; k + 1 < parts.size(); ++k)
-        prm.leave_subsection();
-    }
+  declare_pullout_entry_texts(prm, "Values", ", separated by commas (by semicolons if a value is itself a list); empty: the "
+                                   "base input's value");
   prm.leave_subsection();
 }
 
 SweepDefinition parse_sweep(const std::string &input_file, ParameterHandler &prm)
 {
   parse_input_file(prm, input_file);
+  return make_sweep(input_file, prm);
+}
+
+SweepDefinition make_sweep(const std::string &input_file, const ParameterHandler &prm)
+{
   const std::string where = "input file '" + input_file + "'";
   SweepDefinition sweep;
   sweep.input_file = input_file;

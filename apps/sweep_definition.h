@@ -71,10 +71,25 @@ struct SweepDefinition
 
 void declare_sweep_parameters(dealii::ParameterHandler &prm);
 
+/// The pull-out's entries a sweep may vary (or a design's 'Overrides' set): all but its run-control
+/// entries, as "Anchorage/B".
+std::vector<std::string> sweepable_entries();
+
+/// Declares each of sweepable_entries() in prm's current subsection (its own subsections nested
+/// there), as text, empty by default; its doc is `head` + " of the pull-out's entry '...' (...)" + `tail`.
+void declare_pullout_entry_texts(dealii::ParameterHandler &prm, const std::string &head, const std::string &tail);
+
+/// A base input named in `input_file`, resolved like an 'include': beside that file first, then as given.
+std::string resolve_base_input(const std::string &input_file, const std::string &base);
+
 /// Reads `input_file` into `prm` (declared by declare_sweep_parameters) and makes its members.
 /// Throws std::runtime_error naming the file and the entry for: no entry swept, a value that its
 /// entry's pattern refuses, list entries of different lengths, a base input that cannot be read.
 SweepDefinition parse_sweep(const std::string &input_file, dealii::ParameterHandler &prm);
+
+/// The same for a `prm` already read or set (`geohybrid design` makes each step's sweep so);
+/// `input_file` names it in errors and places its base input.
+SweepDefinition make_sweep(const std::string &input_file, const dealii::ParameterHandler &prm);
 
 /// The base input with the member's values and `output_directory` set, as its run reads it.
 void read_member_input(const SweepDefinition &sweep, const SweepMember &member, dealii::ParameterHandler &prm);
