@@ -2,6 +2,7 @@
 
 #include "apps/parameters_hash.h"
 #include "interrupt.h"
+#include "rank_error.h"
 #include "run_health.h"
 
 #include "apps/pullout_output.h"
@@ -216,26 +217,6 @@ void make_mesh(dealii::parallel::distributed::Triangulation<fem::dim> &mesh, con
   check(g.fill_height, hi[1] - lo[1], "Tank/fill height", "high");
 }
 
-/// Runs `f` on rank 0 only; an exception there is thrown on every rank, so that none waits.
-template <typename F>
-void on_rank_zero(MPI_Comm comm, F &&f)
-{
-  std::string failure;
-  if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
-    try
-      {
-        f();
-      }
-    catch (const std::exception &e)
-      {
-        failure = e.what();
-        if (failure.empty())
-          failure = "rank 0 failed";
-      }
-  failure = dealii::Utilities::MPI::broadcast(comm, failure, 0);
-  if (!failure.empty())
-    throw std::runtime_error(failure);
-}
 } // namespace
 
 int run_pullout_fem_mode(ParameterHandler &prm, const PullOutInput &in, const std::string &where, MPI_Comm comm,

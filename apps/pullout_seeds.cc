@@ -49,21 +49,10 @@ int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm commu
   parse_pullout(prm, input_file, mode != "fem");
   const std::filesystem::path out(prm.get("output directory"));
   // Rank 0 prepares the directory; its refusal (another run's files there) stops every rank.
-  std::string refused;
-  if (rank == 0)
-    try
-      {
-        prepare_output_directory(out.string(), resume);
-        write_resolved_parameters(prm, out);
-      }
-    catch (const std::exception &e)
-      {
-        refused = e.what();
-      }
-  if (with_mpi)
-    refused = dealii::Utilities::MPI::broadcast(communicator, refused, 0);
-  if (!refused.empty())
-    throw std::runtime_error(refused);
+  on_rank_zero(communicator, [&] {
+    prepare_output_directory(out.string(), resume);
+    write_resolved_parameters(prm, out);
+  });
 
   // This rank's seeds, each on MPI_COMM_SELF; a failure or a signal (interrupt.h: mpirun passes
   // it to every rank) is kept until every rank is done, so that no rank waits for one that has

@@ -4,6 +4,7 @@
 #include "output_guard.h"
 #include "parameters_hash.h"
 #include "pullout_command.h"
+#include "rank_error.h"
 #include "resume_check.h"
 #include "run_directory.h"
 #include "summary.h"
@@ -120,26 +121,15 @@ SweepRun run_sweep(const SweepDefinition &sweep, const dealii::ParameterHandler 
 
   // Rank 0 prepares the directory; its refusal stops every rank. A single run's directory is not
   // a sweep's: refused as a run into it is, or cleared with --overwrite.
-  std::string refused;
-  if (rank == 0)
-    try
-      {
-        if (fs::exists(out / "summary.json") || fs::exists(out / "pullout_curve.csv") || fs::exists(out / "checkpoint.h5"))
-          claim_output_directory(out, false);
-        fs::create_directories(out);
-        std::ofstream resolved(out / "sweep.prm");
-        prm.print_parameters(resolved, dealii::ParameterHandler::OutputStyle::ShortPRM);
-        if (!resolved)
-          throw std::runtime_error("cannot write " + (out / "sweep.prm").string());
-      }
-    catch (const std::exception &e)
-      {
-        refused = e.what();
-      }
-  if (with_mpi)
-    refused = dealii::Utilities::MPI::broadcast(communicator, refused, 0);
-  if (!refused.empty())
-    throw std::runtime_error(refused);
+  on_rank_zero(communicator, [&] {
+    if (fs::exists(out / "summary.json") || fs::exists(out / "pullout_curve.csv") || fs::exists(out / "checkpoint.h5"))
+      claim_output_directory(out, false);
+    fs::create_directories(out);
+    std::ofstream resolved(out / "sweep.prm");
+    prm.print_parameters(resolved, dealii::ParameterHandler::OutputStyle::ShortPRM);
+    if (!resolved)
+      throw std::runtime_error("cannot write " + (out / "sweep.prm").string());
+  });
   if (rank == 0)
     std::cout << "geohybrid sweep: " << sweep.members.size() << " members of " << sweep.base_input
               << (n_ranks > 1 ? " over " + std::to_string(n_ranks) + " ranks" : std::string()) << ", in " << out.string()

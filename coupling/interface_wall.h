@@ -11,7 +11,7 @@
 //   - the edge's velocity at P, (1 - xi) v_A + xi v_B (the continuum's half-step velocities, as the
 //     disc's: both made the drift just done);
 //   - the force from the project's LinearContactLaw, the same value type and evaluation as the
-//     DEM's walls (dem_system.cc): normal spring, Coulomb-capped incremental tangential spring
+//     DEM's walls (dem_system_walls.cc): normal spring, Coulomb-capped incremental tangential spring
 //     (Cundall & Strack 1979) with its history kept per (disc, edge) across rebuilds, optional
 //     dashpot on the effective mass 1 / (1/m + (1 - xi)^2 / M_A + xi^2 / M_B) (the lumped nodes
 //     seen at P: a force f at P accelerates P by sum_I N_I^2 f / M_I);

@@ -3,6 +3,7 @@
 // sheet's) shares it, one it reads (the grains' friction) does not.
 #include "dem/lift_cache.h"
 #include "dem/pullout_tank.h"
+#include "small_pullout_tank.h"
 #include "temporary_directory.h"
 
 #include <gtest/gtest.h>
@@ -13,31 +14,14 @@ using namespace geohybrid::dem;
 
 namespace
 {
-/// The small run-out tank of test_dem_pullout.cc (400 clusters in two lifts, the sheet on the
-/// first), settled to an unbalanced-force ratio of 1e-2 only: the check is bit for bit, not physics.
+/// The small run-out tank of test_dem_pullout.cc (small_pullout_tank.h), settled to an
+/// unbalanced-force ratio of 1e-2 only: the check is bit for bit, not physics.
 PullOutTankSpec small_tank(const std::filesystem::path &cache)
 {
-  PullOutTankSpec s;
-  s.geometry.tank_length = 0.16;
-  s.geometry.fill_height = 0.1;
-  s.geometry.cover = 0.05;
-  s.geometry.anchorage_length = 0.1;
-  s.geometry.clamp_offset = 0.01;
-  s.max_segment_length = 0.01;
-  s.filling.n_layers = 2;
-  s.filling.n_particles = 400;
-  s.filling.size_distribution = SizeDistribution::uniform(0.8);
-  s.filling.target_porosity = 0.25;
-  s.filling.growth_stress = 5e3;
+  PullOutTankSpec s = geohybrid::testing::small_pullout_tank();
   s.filling.equilibrium_unbalanced_ratio = 1e-2;
-  s.filling.seed = 3;
   s.filling.lift_cache_directory = cache;
   s.filling.lift_cache_version = "test";
-  for (ContactParameters *c : {&s.filling.particle_contact, &s.sheet.interface})
-    {
-      c->normal_stiffness = 1e7;
-      c->shear_stiffness = 0.5e7;
-    }
   return s;
 }
 
