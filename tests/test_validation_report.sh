@@ -90,6 +90,9 @@ expect_field "gt230_h040_b025 (calibration case)" 7 14.1 1e-6
 expect_field "calibration_gt230_h040_b025_delta28.50 (chosen)" 4 14.1 1e-6
 expect_field calibration_gt230_h040_b025_delta25.60 4 12.5 1e-6
 expect_field gt75_h050_b050 6 "0 of 3"
+# The curves' table: the seeds' curves are the same three rows, so the mean curve's maximum is 9 at
+# 1.0 mm; no row from 20 mm (no plateau) and no profiles (no mechanism): "-".
+grep -q '^| gt230_h040_b050 | 3 | 15.000 | 9.000 | 1.0 | - | - | - |$' "$md" || fail "the curves' table"
 grep -q "runout_h040: the curves are not averaged: runout_h040/seed2/pullout_curve.csv has 2 rows, runout_h040/seed1/pullout_curve.csv 3$" "$md" || fail "the short curve not named"
 grep -q '^| interface angle of the cases \[deg\] | `Sheet/Interface/friction angle` | 28.50 (14 runs) |$' "$md" || fail "the cases' angle"
 grep -q "| every case within 10 % of its experiment (Table 3) | not yet evaluable | 1 of 1 complete cases within 10 %; 1 of 7 cases complete |" "$md" || fail "target 1"
