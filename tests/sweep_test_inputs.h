@@ -1,12 +1,33 @@
 #pragma once
 // The inputs of the sweep and report tests (test_app_sweep.cc, test_app_report.cc): a fem-mode
 // base input on a small tank, whose members take about a second each, and a sweep file over it.
+#include <deal.II/base/mpi.h>
+
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 namespace geohybrid::testing
 {
+inline bool is_rank_zero() { return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0; }
+
+/// A fresh directory geohybrid_test_app_<command>_<test name>, made by rank 0, seen by every rank.
+inline std::filesystem::path fresh_test_directory(const std::string &command)
+{
+  const std::filesystem::path d =
+    std::filesystem::temp_directory_path() /
+    ("geohybrid_test_app_" + command + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  if (is_rank_zero())
+    {
+      std::filesystem::remove_all(d);
+      std::filesystem::create_directories(d);
+    }
+  MPI_Barrier(MPI_COMM_WORLD);
+  return d;
+}
+
 /// A run-out in a 0.6 m x 1 m tank of elastic soil (E = 20 MPa, nu = 0.3, 15.2 kN/m3), 50 mm
 /// cells, the sheet (GT230, delta = 25.6 deg, nodes every 25 mm) at H = 0.775 m over L = 0.55 m,
 /// pulled 4 mm at 4 mm/s: test_app_pullout_fem.cc's tank, whose T_max reaches the interface's

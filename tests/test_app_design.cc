@@ -29,28 +29,12 @@ using geohybrid::apps::DesignBisection;
 
 namespace
 {
-bool design_rank_zero() { return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0; }
-
-/// A fresh directory named after the test, made by rank 0, seen by every rank.
-fs::path design_test_directory()
-{
-  const fs::path d = fs::temp_directory_path() /
-                     ("geohybrid_test_app_design_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  if (design_rank_zero())
-    {
-      fs::remove_all(d);
-      fs::create_directories(d);
-    }
-  MPI_Barrier(MPI_COMM_WORLD);
-  return d;
-}
-
 /// A design file beside the fem base input (tests/sweep_test_inputs.h), into DIRECTORY/design.
 std::string write_design_input(const fs::path &directory, const std::string &design_lines, const std::string &top = "",
                                const std::string &name = "design_input.prm")
 {
   const fs::path file = directory / name;
-  if (design_rank_zero())
+  if (geohybrid::testing::is_rank_zero())
     std::ofstream(file) << "set base input = base.prm\n"
                         << "set output directory = " << (directory / "design").string() << "\n"
                         << top << "subsection Design\n" << design_lines << "end\n";
@@ -168,8 +152,8 @@ TEST(DesignBisection, ABracketOfTheToleranceInDecimalStops)
 // two ends (both kept from the first design: no run is made again).
 TEST(Design, DesignOfAFemRunOut)
 {
-  const fs::path d = design_test_directory();
-  if (design_rank_zero())
+  const fs::path d = geohybrid::testing::fresh_test_directory("design");
+  if (geohybrid::testing::is_rank_zero())
     geohybrid::testing::write_fem_base_input(d);
   const double target = 3.0, tolerance = 0.05;
   const std::string input = write_design_input(d, "  set entry = L\n  set minimum = 0.1\n  set maximum = 0.5\n"
@@ -178,7 +162,7 @@ TEST(Design, DesignOfAFemRunOut)
   ASSERT_EQ(geohybrid::apps::run_design_command(input, false), 0); // collective
   double answer = 0.0;
   std::map<std::string, fs::file_time_type> written;
-  if (design_rank_zero())
+  if (geohybrid::testing::is_rank_zero())
     {
       const nlohmann::json summary = geohybrid::apps::read_summary(out / "summary.json");
       ASSERT_EQ(summary.at("outcome"), "found") << summary.at("message");
@@ -228,7 +212,7 @@ TEST(Design, DesignOfAFemRunOut)
 
   // Again: the same answer, every run kept as it was.
   ASSERT_EQ(geohybrid::apps::run_design_command(input, false), 0);
-  if (design_rank_zero())
+  if (geohybrid::testing::is_rank_zero())
     {
       EXPECT_EQ(geohybrid::apps::read_summary(out / "summary.json").at("answer_m").get<double>(), answer);
       for (const auto &[run, time] : written)
@@ -244,7 +228,7 @@ TEST(Design, DesignOfAFemRunOut)
                                                       "  set target T_max = " + target_text + "\n  set tolerance = 0.05\n",
                                                    "", "design_" + target_text + ".prm");
       EXPECT_EQ(geohybrid::apps::run_design_command(other, false), 1);
-      if (design_rank_zero())
+      if (geohybrid::testing::is_rank_zero())
         {
           const nlohmann::json summary = geohybrid::apps::read_summary(out / "summary.json");
           EXPECT_EQ(summary.at("outcome"), outcome);
@@ -257,7 +241,7 @@ TEST(Design, DesignOfAFemRunOut)
     }
   for (const auto &[run, time] : written)
     EXPECT_EQ(fs::last_write_time(fs::path(run) / "summary.json"), time) << run;
-  if (design_rank_zero())
+  if (geohybrid::testing::is_rank_zero())
     fs::remove_all(d);
   MPI_Barrier(MPI_COMM_WORLD);
 }
@@ -267,8 +251,8 @@ TEST(Design, DesignOfAFemRunOut)
 // already at the minimum: said after the two ends, four runs in all.
 TEST(Design, MeanAndSpreadOverDemSeeds)
 {
-  const fs::path d = design_test_directory();
-  if (!design_rank_zero())
+  const fs::path d = geohybrid::testing::fresh_test_directory("design");
+  if (!geohybrid::testing::is_rank_zero())
     return;
   geohybrid::testing::write_tiny_pullout_input(d);
   const fs::path file = d / "design_dem.prm";
@@ -305,8 +289,8 @@ TEST(Design, MeanAndSpreadOverDemSeeds)
 // Refused before anything is written, naming the file and the entry.
 TEST(Design, BadDesignFilesNameTheEntry)
 {
-  const fs::path d = design_test_directory();
-  if (!design_rank_zero())
+  const fs::path d = geohybrid::testing::fresh_test_directory("design");
+  if (!geohybrid::testing::is_rank_zero())
     return;
   geohybrid::testing::write_fem_base_input(d);
   const std::string good = "  set minimum = 0.1\n  set maximum = 0.5\n  set target T_max = 3\n  set tolerance = 0.05\n";

@@ -29,22 +29,6 @@ using geohybrid::testing::lines_of;
 
 namespace
 {
-bool is_rank_zero() { return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0; }
-
-/// A fresh directory named after the test, made by rank 0, seen by every rank.
-fs::path sweep_test_directory()
-{
-  const fs::path d = fs::temp_directory_path() /
-                     ("geohybrid_test_app_sweep_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  if (is_rank_zero())
-    {
-      fs::remove_all(d);
-      fs::create_directories(d);
-    }
-  MPI_Barrier(MPI_COMM_WORLD);
-  return d;
-}
-
 /// sweep.csv's rows as maps from its header's names to the fields.
 std::vector<std::map<std::string, std::string>> sweep_rows(const fs::path &csv)
 {
@@ -89,9 +73,9 @@ std::string sweep_error_of(const std::string &file)
 // interface's geostatic limit 2 gamma H tan(delta) L grows as L.
 TEST(Sweep, SweepOfFemMembers)
 {
-  const fs::path d = sweep_test_directory();
+  const fs::path d = geohybrid::testing::fresh_test_directory("sweep");
   std::string input;
-  if (is_rank_zero())
+  if (geohybrid::testing::is_rank_zero())
     {
       geohybrid::testing::write_fem_base_input(d);
       input = geohybrid::testing::write_sweep_input(d, "base.prm",
@@ -103,7 +87,7 @@ TEST(Sweep, SweepOfFemMembers)
   const fs::path out = d / "sweep";
   EXPECT_EQ(geohybrid::apps::run_sweep_command(input, false), 1); // collective
   std::map<std::string, fs::file_time_type> written;
-  if (is_rank_zero())
+  if (geohybrid::testing::is_rank_zero())
     {
       const auto rows = sweep_rows(out / "sweep.csv");
       ASSERT_EQ(rows.size(), 6u + 3u);
@@ -156,7 +140,7 @@ TEST(Sweep, SweepOfFemMembers)
   MPI_Barrier(MPI_COMM_WORLD);
   // Again: the finished members kept as they are, the one without a summary run again, the same.
   EXPECT_EQ(geohybrid::apps::run_sweep_command(input, false), 1);
-  if (is_rank_zero())
+  if (geohybrid::testing::is_rank_zero())
     {
       const auto rows = sweep_rows(out / "sweep.csv");
       ASSERT_EQ(rows.size(), 9u);
@@ -175,7 +159,7 @@ TEST(Sweep, SweepOfFemMembers)
 // sample standard deviation of the members' T_max, as computed here from their summaries.
 TEST(Sweep, MeanAndSpreadOverDemSeeds)
 {
-  const fs::path d = sweep_test_directory();
+  const fs::path d = geohybrid::testing::fresh_test_directory("sweep");
   geohybrid::testing::write_tiny_pullout_input(d);
   const std::string input = geohybrid::testing::write_sweep_input(
     d, "tiny.prm", "  subsection Pull\n    set final displacement = 0.001\n  end\n"
@@ -209,8 +193,8 @@ TEST(Sweep, MeanAndSpreadOverDemSeeds)
 // other lengths, a sweep of nothing, a base input that does not exist.
 TEST(Sweep, BadSweepFilesNameTheEntry)
 {
-  const fs::path d = sweep_test_directory();
-  if (!is_rank_zero())
+  const fs::path d = geohybrid::testing::fresh_test_directory("sweep");
+  if (!geohybrid::testing::is_rank_zero())
     return;
   geohybrid::testing::write_fem_base_input(d);
   struct Case
