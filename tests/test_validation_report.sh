@@ -45,6 +45,12 @@ ln -s calibration_gt230_h040_b025_delta28.50 "$runs/gt230_h040_b025"
 k=0; for T in 14.7 14.5 15.8; do k=$((k + 1)); fabricate "$runs/gt230_h040_b050/seed$k" "$T" 28.50 "${three_rows[@]}"; done
 k=0; for T in 15.1 15.4 15.7; do k=$((k + 1)); fabricate "$runs/gt230_h040_b0125/seed$k" "$T" 28.50 "${three_rows[@]}"; done
 k=0; for T in 16.4 16.6 16.8; do k=$((k + 1)); fabricate "$runs/gt230_h040_b075/seed$k" "$T" 28.50 "${three_rows[@]}"; done
+# The interface columns from pullout_forces.csv (u, T, friction, ..., normal in field 8, mobilised in 9):
+# seed 1 from 20 mm atan(3/3) = 45 deg, mobilised (0.5 + 0.7)/2; seed 2 atan(1/sqrt 3) = 30 deg, 0.8;
+# the row before 20 mm left out; seed 3 has no file. Means over the two: 37.5 deg, 0.70.
+forces() { printf 'u,T,friction,normal_interface,wall,inertia,damping,normal,mobilised\n'; printf '%s\n' "$@"; }
+forces "0.01,0,9,0,0,0,0,1,0.1" "0.02,0,3,0,0,0,0,3,0.5" "0.03,0,3,0,0,0,0,3,0.7" > "$runs/gt230_h040_b075/seed1/pullout_forces.csv"
+forces "0.025,0,1,0,0,0,0,1.7320508075688772,0.8" > "$runs/gt230_h040_b075/seed2/pullout_forces.csv"
 fabricate "$runs/runout_h040/seed1" 6.5 28.50 "${three_rows[@]}"
 fabricate "$runs/runout_h040/seed2" 6.8 28.50 "0,0" "0.000501,5" # one row short: not averaged
 
@@ -92,7 +98,8 @@ expect_field calibration_gt230_h040_b025_delta25.60 4 12.5 1e-6
 expect_field gt75_h050_b050 6 "0 of 3"
 # The curves' table: the seeds' curves are the same three rows, so the mean curve's maximum is 9 at
 # 1.0 mm; no row from 20 mm (no plateau) and no profiles (no mechanism): "-".
-grep -q '^| gt230_h040_b050 | 3 | 15.000 | 9.000 | 1.0 | - | - | - |$' "$md" || fail "the curves' table"
+grep -q '^| gt230_h040_b050 | 3 | 15.000 | 9.000 | 1.0 | - | - | - | - | - |$' "$md" || fail "the curves' table"
+grep -q '^| gt230_h040_b075 | 3 | 16.600 | 9.000 | 1.0 | - | - | - | 37.5 | 0.70 |$' "$md" || fail "the interface columns"
 grep -q "runout_h040: the curves are not averaged: runout_h040/seed2/pullout_curve.csv has 2 rows, runout_h040/seed1/pullout_curve.csv 3$" "$md" || fail "the short curve not named"
 grep -q '^| interface angle of the cases \[deg\] | `Sheet/Interface/friction angle` | 28.50 (14 runs) |$' "$md" || fail "the cases' angle"
 grep -q "| every case within 10 % of its experiment (Table 3) | not yet evaluable | 1 of 1 complete cases within 10 %; 1 of 7 cases complete |" "$md" || fail "target 1"
