@@ -360,6 +360,8 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   const dem::PullOutGeometry &g = in.tank.geometry;
   const double checkpoint_interval = prm.get_double("checkpoint interval");
   const auto stop_after = static_cast<std::uint64_t>(prm.get_integer("stop after steps"));
+  // A sheet far too stiff is known before the fill (its check after the fill is the exact one).
+  refuse_sheet_inertia_before_the_fill(in.tank, in.pull, where);
   if (check_only)
     return 0;
 
@@ -476,8 +478,9 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   else
     pull.emplace(system, in.pull);
   const double u_first = pull->head_displacement();
-  // The sheet's scaled mass is known now, with the grains' time step: refused if its inertia
-  // would set the answer (run_health.h). The watch looks at every point of the curve.
+  // The sheet's scaled mass is known exactly now, with the grains' time step: refused if its
+  // inertia would set the answer (run_health.h; set-up refused only what was far beyond). The
+  // watch looks at every point of the curve.
   std::vector<std::string> warnings = in.warnings;
   if (auto w = check_dem_sheet_inertia(system.sheets()[0], in.pull, system.time_step(), 2.0 * one_face, where))
     warnings.push_back(*w);

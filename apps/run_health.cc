@@ -4,6 +4,7 @@
 #include "apps/summary.h"
 
 #include "dem/dem_system.h"
+#include "dem/sheet_inertia_estimate.h"
 
 #include <algorithm>
 #include <cmath>
@@ -93,6 +94,32 @@ std::optional<std::string> check_sheet_inertia(const SheetInertiaCheck &c, const
   if (share > 0.05)
     return what + " (lower 'Pull/rate' or lengthen 'Pull/ramp displacement')";
   return std::nullopt;
+}
+
+void refuse_sheet_inertia_before_the_fill(const dem::PullOutTankSpec &tank, const dem::PullSpec &pull,
+                                          const std::string &where)
+{
+  const dem::SheetInertiaEstimate estimate = dem::estimate_sheet_inertia(tank);
+  SheetInertiaCheck c;
+  c.inertial_mass = estimate.inertial_mass;
+  c.rate = pull.rate;
+  c.ramp_displacement = pull.ramp_displacement;
+  c.time_step = estimate.grain_time_step;
+  c.mass_scaling = estimate.mass_scaling;
+  const dem::PullOutGeometry &g = tank.geometry;
+  c.friction_limit = 2.0 * tank.unit_weight * g.cover * g.anchorage_length *
+                     std::tan(dem::degrees_to_radians(tank.sheet.interface.friction_angle_deg));
+  const double share = c.ramp_force() / c.friction_limit;
+  if (share > sheet_inertia_setup_share)
+    throw std::invalid_argument(
+      where + ": 'Sheet/axial stiffness' = " + number(tank.sheet.axial_stiffness, 4) +
+      " N/m makes the sheet's inertia, not the soil, set the head tension: to stay stable at the grains' time step (" +
+      number(c.time_step, 4) + " s, estimated before the fill) its masses are scaled by " + number(c.mass_scaling, 4) +
+      ", an inertial mass of " + number(c.inertial_mass, 4) + " kg/m that takes " + number(c.ramp_force(), 4) +
+      " N/m to follow the clamp's ramp, " + number(100.0 * share, 3) +
+      " % of the interface's geostatic friction limit 2 gamma H L tan(delta) = " + number(c.friction_limit, 4) +
+      " N/m; lower 'Sheet/axial stiffness' (the stiffer the sheet, the more mass its stable step needs), or lower "
+      "'Pull/rate', or lengthen 'Pull/ramp displacement'");
 }
 
 std::optional<std::string> check_fem_tension(double T_max, double interface_limit)

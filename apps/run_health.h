@@ -23,6 +23,8 @@ namespace geohybrid::dem
 {
 class DemSystem;
 struct EnergyBudget;
+struct PullOutTankSpec;
+struct PullSpec;
 } // namespace geohybrid::dem
 
 namespace geohybrid::apps
@@ -86,6 +88,17 @@ struct SheetInertiaCheck
 /// friction limit (the answer would be its inertia's); warns above 5 % (the rate check found
 /// the sheet's inertia below 0.1 % of T).
 std::optional<std::string> check_sheet_inertia(const SheetInertiaCheck &check, const std::string &where);
+
+/// The same at dem mode's set-up, before the tank is filled: the sheet's inertial mass and the
+/// grains' step from dem::estimate_sheet_inertia, against the geostatic limit 2 gamma H L
+/// tan(delta) (the filled tank's uses the measured stress on the sheet). Refused
+/// (std::invalid_argument naming `where` and 'Sheet/axial stiffness') when the ramp force is above
+/// sheet_inertia_setup_share of that limit: the estimate can be off by tens of per cent
+/// (run_health.cc), so set-up refuses only a sheet far beyond the filled tank's bound of half the
+/// limit, and the filled tank's check decides the cases near it.
+void refuse_sheet_inertia_before_the_fill(const dem::PullOutTankSpec &tank, const dem::PullSpec &pull,
+                                          const std::string &where);
+inline constexpr double sheet_inertia_setup_share = 2.0;
 
 /// fem mode's check of the result: T_max against the geostatic interface limit (the head tension
 /// if the whole sheet slid on soil at rest). Dilatancy and a wrap-around's return raise T above

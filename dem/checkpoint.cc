@@ -1,6 +1,7 @@
 #include "checkpoint.h"
 
 #include "hdf5_handles.h"
+#include "hdf5_writable_file.h"
 
 #include <cstdio>
 #include <cstring>
@@ -898,13 +899,11 @@ void write_checkpoint_file(const DemSystemState &state, const CommandState *comm
     {
       {
         hdf5::SilenceErrors silence;
-        Handle fapl = hdf5::file_access(where);
-        Handle h5(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose, where,
-                  "creating '" + temporary.string() + "'");
+        hdf5::WritableFile h5 = hdf5::WritableFile::create(temporary, where);
         put_everything(h5.get(), state, where);
         if (command)
           put_command(h5.get(), *command, where);
-        h5.close(where, "closing '" + temporary.string() + "'");
+        h5.close();
       }
       sync_to_disk(temporary, true, where);
     }

@@ -144,6 +144,9 @@ inline void write_dataset(hid_t parent, const char *name, hid_t file_type, hid_t
     n *= d;
   if (n > 0)
     check(H5Dwrite(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), where, "writing " + what);
+  // A small dataset's data wait in HDF5's buffer until the dataset is closed: a full disk shows
+  // here, and the destructor would not say so.
+  set.close(where, "writing " + what);
 }
 
 /// Writes a scalar attribute.

@@ -2,6 +2,7 @@
 
 #include "checkpoint.h"
 #include "hdf5_handles.h"
+#include "hdf5_writable_file.h"
 
 #include <cmath>
 #include <cstdio>
@@ -305,11 +306,9 @@ void write_sample_file(const StoredSample &sample, const std::filesystem::path &
     {
       write_checkpoint(sample.state, partial);
       hdf5::SilenceErrors silence;
-      Handle fapl = hdf5::file_access(where);
-      Handle h5(H5Fopen(partial.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose, where,
-                "reopening '" + partial.string() + "'");
+      hdf5::WritableFile h5 = hdf5::WritableFile::open(partial, where);
       put_metadata(h5.get(), sample, where);
-      h5.close(where, "closing '" + partial.string() + "'");
+      h5.close();
     }
   catch (...)
     {

@@ -205,7 +205,7 @@ RedfStartingSizes redf_starting_sizes(const RedfSpec &s, double region_area, dou
     }
   for (double &x : u)
     x *= initial_scale;
-  return RedfStartingSizes{std::move(u), largest_extent};
+  return RedfStartingSizes{std::move(u), largest_extent, final_scale / initial_scale};
 }
 
 void place_at_random(const RedfSpec &s, const std::vector<Vec2> &vertices, const std::vector<double> &radii,

@@ -97,6 +97,7 @@ struct RedfStartingSizes
 {
   std::vector<double> radii;   ///< large-disc radii to place, largest first [m]
   double largest_extent = 0.0; ///< of the largest particle once grown to the target porosity [m]
+  double growth_to_target = 1.0; ///< radii at the target porosity / the radii above [-]
 };
 
 /// The starting sizes of a REDF region: relative sizes from spec.size_distribution

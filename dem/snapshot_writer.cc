@@ -1,12 +1,14 @@
 #include "snapshot_writer.h"
 
 #include "hdf5_handles.h"
+#include "hdf5_writable_file.h"
 
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <locale>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -371,10 +373,7 @@ void SnapshotWriter::create_empty_files()
 {
   const std::string where = describe(h5_path_);
   hdf5::SilenceErrors silence;
-  Handle fapl = hdf5::file_access(where);
-  Handle file(H5Fcreate(h5_path_.string().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose, where,
-              "creating the file");
-  file.close(where, "closing the file");
+  hdf5::WritableFile::create(h5_path_, where).close();
   xdmf_entries_.clear();
   write_xdmf();
 }
@@ -392,12 +391,17 @@ SnapshotWriter SnapshotWriter::resume(const std::filesystem::path &directory, co
   const std::string where = describe(writer.h5_path_);
   {
     hdf5::SilenceErrors silence;
-    Handle fapl = hdf5::file_access(where);
-    const hid_t id = H5Fopen(writer.h5_path_.string().c_str(), H5F_ACC_RDWR, fapl.get());
-    if (id < 0)
-      fail(writer.h5_path_, "cannot reopen it to continue the run (" + hdf5::error_text() +
-                              "); move it away to start a new snapshot file from the resumed time on");
-    Handle file(id, H5Fclose, where, "opening the file");
+    std::optional<hdf5::WritableFile> reopened;
+    try
+      {
+        reopened.emplace(hdf5::WritableFile::open(writer.h5_path_, where));
+      }
+    catch (const std::runtime_error &e)
+      {
+        throw std::runtime_error(std::string(e.what()) +
+                                 "; move it away to start a new snapshot file from the resumed time on");
+      }
+    hdf5::WritableFile &file = *reopened;
     bool keeping = true;
     for (std::size_t index = 0;; ++index)
       {
@@ -437,7 +441,7 @@ SnapshotWriter SnapshotWriter::resume(const std::filesystem::path &directory, co
         // Snapshots are in time order: this one and all later ones go.
         check(H5Ldelete(file.get(), name.c_str(), H5P_DEFAULT), where, "removing " + name);
       }
-    file.close(where, "closing the file");
+    file.close();
   }
   writer.write_xdmf();
   return writer;
@@ -482,9 +486,7 @@ void SnapshotWriter::write(const DemSystem &system)
   const std::string where = describe(h5_path_);
   {
     hdf5::SilenceErrors silence;
-    Handle fapl = hdf5::file_access(where);
-    Handle file(H5Fopen(h5_path_.string().c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose, where,
-                "opening the file");
+    hdf5::WritableFile file = hdf5::WritableFile::open(h5_path_, where);
     // A snapshot that failed half-way earlier may have left its group behind: replace it.
     if (H5Lexists(file.get(), name.c_str(), H5P_DEFAULT) > 0)
       check(H5Ldelete(file.get(), name.c_str(), H5P_DEFAULT), where, "removing the incomplete group " + name);
@@ -534,7 +536,7 @@ void SnapshotWriter::write(const DemSystem &system)
         write_int32s(g.get(), "wall_index", walls.wall_index, where);
       }
     }
-    file.close(where, "closing the file");
+    file.close(); // a snapshot is listed in the .xdmf only once its file is complete on the disk
   }
 
   xdmf_entries_.push_back(xdmf_entry(h5_name_, name, system.time(), counts));

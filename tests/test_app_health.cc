@@ -6,13 +6,18 @@
 #include "apps/dem_command.h"
 #include "apps/pull_watch.h"
 #include "apps/pullout_command.h"
+#include "apps/pullout_input.h"
+#include "apps/run_directory.h"
 #include "apps/pullout_seeds.h"
 #include "apps/run_health.h"
 #include "apps/summary.h"
 #include "dem/checkpoint.h"
 #include "dem/dem_system.h"
+#include "dem/sheet_inertia_estimate.h"
 #include "temporary_directory.h"
 #include "tiny_pullout_input.h"
+
+#include <deal.II/base/parameter_handler.h>
 
 #include <gtest/gtest.h>
 
@@ -51,6 +56,15 @@ std::string health_message(const Run &run, bool *went_wrong = nullptr)
 }
 
 bool contains(const std::string &text, const std::string &part) { return text.find(part) != std::string::npos; }
+
+/// The tank of a pull-out input, as the command reads it.
+dem::PullOutTankSpec tiny_tank_spec(const std::string &input)
+{
+  dealii::ParameterHandler prm;
+  apps::declare_pullout_parameters(prm);
+  apps::parse_input_file(prm, input);
+  return apps::parse_pullout(prm, "input file '" + input + "'", true).tank;
+}
 
 /// The warning of `watch` that contains `part`, or empty. (A lone grain has no contact: its
 /// unbalanced-force ratio is 1, a warning of its own that these tests leave aside.)
@@ -154,9 +168,9 @@ TEST(RunHealth, GrainsTooFastForTheTimeStepAreRefused)
 }
 
 // The sheet of axial stiffness 1e10 N/m: its masses scaled to the grains' step make its
-// inertia, not the soil, the answer (T_max 3.49 kN/m against 0.046): refused when the tank is
-// full, before the pull, naming 'Sheet/axial stiffness'; no summary.json. The bounds on made-up
-// sheets: refused above half the friction limit, a warning above 5 %.
+// inertia, not the soil, the answer (T_max 3.49 kN/m against 0.046): refused at set-up, before
+// the fill and before any file is written, naming the input file and 'Sheet/axial stiffness'.
+// The bounds on made-up sheets: refused above half the friction limit, a warning above 5 %.
 TEST(RunHealth, ASheetWhoseInertiaSetsTheAnswerIsRefused)
 {
   apps::SheetInertiaCheck c{1.0, 0.01, 0.25e-3, 1e-5, 10.0, 100.0}; // 1 kg/m: 0.2 N/m to ramp, 2 %
@@ -171,9 +185,28 @@ TEST(RunHealth, ASheetWhoseInertiaSetsTheAnswerIsRefused)
   const std::string input = geohybrid::testing::write_tiny_pullout_input(d.path);
   const std::string e =
     health_message([&] { apps::run_pullout_command(input, false, {{"Sheet/axial stiffness", "1e10"}}); });
-  EXPECT_TRUE(contains(e, "'Sheet/axial stiffness'")) << e;
-  EXPECT_TRUE(contains(e, "would set the head tension")) << e;
-  EXPECT_FALSE(fs::exists(d.path / "out" / "summary.json"));
+  EXPECT_TRUE(contains(e, "input file '" + input + "': 'Sheet/axial stiffness' = 1e+10 N/m")) << e;
+  EXPECT_TRUE(contains(e, "estimated before the fill")) << e;
+  EXPECT_TRUE(contains(e, "set the head tension")) << e;
+  EXPECT_FALSE(fs::exists(d.path / "out")); // nothing written, no tank filled
+}
+
+// The estimate set-up refuses on, against the filled tank's figures for the same input (the
+// tiny tank at 1e10 N/m, filled and refused before the pull by main's d073cad: mass scaling
+// 3.136e5, inertial mass 2.041e4 kg/m; the estimate gave the same four digits): within 10 %,
+// well inside the factor 4 between set-up's bound (twice the friction limit) and the filled
+// tank's (half of it). GT230's 2.1e6 N/m is far from refused.
+TEST(RunHealth, TheSheetsInertiaEstimatedBeforeTheFillIsTheFilledTanks)
+{
+  TemporaryDirectory d("health_sheet_estimate");
+  dem::PullOutTankSpec tank = tiny_tank_spec(geohybrid::testing::write_tiny_pullout_input(d.path));
+  tank.sheet.axial_stiffness = 1e10;
+  const dem::SheetInertiaEstimate stiff = dem::estimate_sheet_inertia(tank);
+  EXPECT_NEAR(stiff.inertial_mass, 2.041e4, 0.1 * 2.041e4);
+  EXPECT_NEAR(stiff.mass_scaling, 3.136e5, 0.1 * 3.136e5);
+  tank.sheet.axial_stiffness = 2.104e6;
+  const dem::SheetInertiaEstimate gt230 = dem::estimate_sheet_inertia(tank);
+  EXPECT_LT(gt230.inertial_mass, 1e-3 * stiff.inertial_mass);
 }
 
 // ---- stopped during the run ------------------------------------------------------------------

@@ -246,3 +246,37 @@ TEST(DemInterrupted, SigintKeepsTheRowsAndResumesBitForBit)
     EXPECT_TRUE(read_text(d / "stopped" / file) == read_text(d / "straight" / file)) << file;
   fs::remove_all(d);
 }
+
+// `geohybrid pullout` in fem mode and SIGINT (Ctrl-C): the continuum has no checkpoint, so the
+// run stops at the next point of its curve with 130, keeps the points so far (flushed at each)
+// and says to run it again; no summary.json, no checkpoint. The elastic tank of
+// tests/test_app_pullout_fem.cc, pulled 20 mm so that the signal lands well inside the pull.
+TEST(FemInterrupted, SigintKeepsTheCurveSoFarAndSaysToRunAgain)
+{
+  const fs::path d = interrupt_test_directory();
+  const fs::path input = d / "fem.prm";
+  std::ofstream(input) << "set output directory = " << (d / "out").string() << "\nset mode = fem\n"
+                       << "subsection Tank\n  set length = 0.6\n  set fill height = 1.0\nend\n"
+                       << "subsection Anchorage\n  set H = 0.775\n  set L = 0.55\nend\n"
+                       << "subsection Pull\n  set rate = 0.004\n  set final displacement = 0.02\n"
+                       << "  set record interval = 0.0005\n  set ramp displacement = 0\n"
+                       << "  set tension profiles at = 0.02\nend\n"
+                       << "subsection Continuum\n  set cell size = 0.05\n  set sheet node spacing = 0.025\n"
+                       << "  set soil model = linear elastic\n  set Young modulus = 20e6\n  set Poisson ratio = 0.3\nend\n";
+  const pid_t child = start_geohybrid({"pullout", input.string()}, d / "out.log");
+  const fs::path curve = d / "out" / "pullout_curve.csv";
+  ASSERT_TRUE(wait_while_running(child, [&] { return rows_of(curve) >= 3; })) << read_text(d / "out.log");
+  ASSERT_EQ(kill(child, SIGINT), 0);
+  EXPECT_EQ(wait_for(child), 130) << read_text(d / "out.log");
+  const std::string said = read_text(d / "out.log");
+  EXPECT_NE(said.find("interrupted by SIGINT at "), std::string::npos) << said;
+  EXPECT_NE(said.find("fem mode writes no checkpoints"), std::string::npos) << said;
+  EXPECT_NE(said.find("run it again: "), std::string::npos) << said;
+  EXPECT_NE(said.find(input.string() + " --overwrite"), std::string::npos) << said;
+  EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
+  EXPECT_FALSE(fs::exists(d / "out" / "checkpoint.h5"));
+  const std::size_t kept = rows_of(curve);
+  EXPECT_GE(kept, 3u);
+  EXPECT_LT(kept, 41u) << "the pull had finished before the signal"; // 20 mm every 0.5 mm, and u = 0
+  fs::remove_all(d);
+}

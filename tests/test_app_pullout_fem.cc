@@ -274,6 +274,28 @@ TEST(PullOutFemMode, BadInputIsRefusedByNameBeforeAnyOutput)
     fs::remove_all(d);
 }
 
+// A corrupt mesh through the command (the reader's own test: tests/test_fem_tank_mesh.cc): one
+// line naming the entry and the file, no deal.II stack trace, nothing written; on every rank the
+// same message (test_app_pullout_fem_np2 runs this on two).
+TEST(PullOutFemMode, CorruptMeshGivesOneLineNamingTheEntryAndTheFile)
+{
+  const fs::path d = test_directory();
+  const fs::path mesh = d / "corrupt.msh";
+  if (is_writer())
+    std::ofstream(mesh, std::ios::binary) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n\x01\xff\x02zz\n";
+  const std::string message =
+    error_of(write_input(d, "subsection Continuum\n  set mesh file = " + mesh.string() + "\nend\n"));
+  EXPECT_NE(message.find("'Continuum/mesh file' = '" + mesh.string() + "'"), std::string::npos) << message;
+  EXPECT_NE(message.find("cannot read '" + mesh.string() + "' as a gmsh 2.2 ASCII mesh"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_EQ(message.find("Stacktrace"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\xff'), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(d / "out"));
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (is_writer())
+    fs::remove_all(d);
+}
+
 // A wrap-around through the app (L = 0.425 m, D1 = 0.15 m up from the lower part's end at
 // H = 0.775 m, B = 0.2 m back towards the front wall at D2 = 0.625 m; the lower part, the return
 // and the upper part through the middle of a row, a column and a row of the generated cells), 4 mm:
