@@ -26,6 +26,7 @@
 #include <iostream>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace geohybrid::apps
@@ -54,10 +55,13 @@ void declare_hybrid_parameters(ParameterHandler &prm)
                     "hybrid mode, DEM region length > 0: delta of the sheet's interface in the continuum; 0 takes "
                     "'Sheet/Interface/friction angle', the grains' contact angle, which is above the angle the DEM's "
                     "sheet mobilises (calibrate it on a DEM pull-out: tan delta = T_max / (2 sigma_v L)) [deg]");
-  prm.declare_entry("lift thickness", number(region.lift_thickness), Patterns::Double(),
-                    "hybrid mode: the particle box is filled in lifts at most this thick (its own lifts: 'Filling/"
-                    "number of layers' is then only checked for the whole tank, as in dem mode); the fill refuses grains "
-                    "larger than a fifth of a lift, so thinner lifts need more particles [m]");
+  prm.declare_entry("lift thickness", "auto", Patterns::Anything(),
+                    "hybrid mode: the particle box is filled in its own lifts ('Filling/number of layers' is only "
+                    "checked for the whole tank, as in dem mode), with the sheet and a wrap-around's upper part on lift "
+                    "boundaries; the fill refuses grains larger than a fifth of a lift. auto: 0.05 m lifts if the "
+                    "grains allow, else the thinnest lifts at least 5.25 of the largest grains thick (the box may "
+                    "then reach further below the sheet than the margin). A number: lifts at most this thick, the "
+                    "margin below the sheet divided evenly [m]");
   prm.declare_entry("band width", number(region.band_width), Patterns::Double(),
                     "hybrid mode: width of the overlap band where the particles are tied to the continuum; 0 = "
                     "four mean grain diameters [m]");
@@ -92,6 +96,28 @@ void declare_hybrid_parameters(ParameterHandler &prm)
 
 namespace
 {
+/// 'Hybrid/lift thickness': auto (0, the library's automatic lifts) or a positive number.
+double lift_thickness(const std::string &value, const std::string &where)
+{
+  if (value == "auto")
+    return 0.0;
+  std::size_t read = 0;
+  double thickness = 0.0;
+  try
+    {
+      thickness = std::stod(value, &read);
+    }
+  catch (const std::exception &)
+    {
+      read = 0;
+    }
+  if (read == 0 || value.find_first_not_of(" \t", read) != std::string::npos || !(thickness > 0.0) ||
+      !std::isfinite(thickness))
+    throw std::invalid_argument(where + ": parameter 'Hybrid/lift thickness' = '" + value +
+                                "' must be auto or a positive thickness [m]");
+  return thickness;
+}
+
 /// subsection Hybrid and the soil of subsection Continuum, with the shared input, as the
 /// library's spec; checked (std::invalid_argument naming `where` and the entry).
 coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInput &in, const std::string &where)
@@ -105,7 +131,7 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
   // 0 takes the grains' angle on the sheet (Sheet/Interface/friction angle).
   const double delta = prm.get_double("continuum interface friction angle");
   spec.continuum.sheet_interface.friction_angle_deg = delta != 0.0 ? delta : in.tank.sheet.interface.friction_angle_deg;
-  r.lift_thickness = prm.get_double("lift thickness");
+  r.lift_thickness = lift_thickness(prm.get("lift thickness"), where);
   r.band_width = prm.get_double("band width");
   r.cell_size = prm.get_double("cell size");
   if (prm.get("coupling method") == "penalty")
@@ -318,7 +344,8 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
       std::filesystem::remove(stale); // never resume a stale one
   write_resolved_parameters(prm, out);
   std::cout << "geohybrid pullout: " << anchorage_description(g) << "; mode hybrid: " << box.n_particles << " particles in the box [" << number(box.x0, 4) << ", "
-            << number(box.x1, 4) << "] x [" << number(box.y0, 4) << ", " << number(box.y1, 4) << "] m ("
+            << number(box.x1, 4) << "] x [" << number(box.y0, 4) << ", " << number(box.y1, 4) << "] m in "
+            << box.n_lifts << " lifts of " << number(box.lift_thickness, 4) << " m ("
             << in.tank.filling.n_particles << " for the whole tank), " << fem::to_string(spec.continuum.soil.kind)
             << " continuum, coupling " << method_name(spec.region.method) << std::endl;
 

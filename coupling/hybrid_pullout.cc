@@ -126,8 +126,8 @@ std::tuple<std::uint64_t, double, double> settle_under_overburden(dem::DemSystem
 void HybridRegionSpec::validate(const std::string &where) const
 {
   fem::require_parameter(margin > 0.0 && std::isfinite(margin), where, "Hybrid/DEM region margin", margin, "must be positive [m]");
-  fem::require_parameter(lift_thickness > 0.0 && std::isfinite(lift_thickness), where, "Hybrid/lift thickness", lift_thickness,
-          "must be positive [m]");
+  fem::require_parameter(lift_thickness >= 0.0 && std::isfinite(lift_thickness), where, "Hybrid/lift thickness", lift_thickness,
+          "must be zero (automatic) or positive [m]");
   fem::require_parameter(band_width >= 0.0 && std::isfinite(band_width), where, "Hybrid/band width", band_width,
           "must be zero (automatic) or positive [m]");
   fem::require_parameter(cell_size >= 0.0 && std::isfinite(cell_size), where, "Hybrid/cell size", cell_size,
@@ -161,79 +161,6 @@ void HybridPullOutSpec::validate(const std::string &where) const
                          "must lie in [0, 90): 0 takes 'Sheet/Interface/friction angle' [deg]");
   fem::require_parameter(continuum.local_damping >= 0.0 && continuum.local_damping < 1.0, where, "Continuum/local damping",
           continuum.local_damping, "must lie in [0, 1) [-]");
-}
-
-ParticleBox particle_box(const HybridPullOutSpec &spec, const std::string &where)
-{
-  spec.validate(where);
-  const dem::PullOutGeometry &g = spec.tank.geometry;
-  const double margin = spec.region.margin;
-  const double sheet_level = g.sheet_level();
-  // A sheet that crosses into the continuum has only (part of) its lower part in the box: the box
-  // is a run-out's.
-  const bool crossing = spec.region.dem_region_length > 0.0;
-  const bool wrap = g.anchorage == dem::Anchorage::wrap_around && !crossing;
-  const double rise = wrap ? g.return_height : 0.0; // from the lower part to the upper part
-  ParticleBox box;
-  // Below the sheet: `margin`, or down to the base; the lifts divide it evenly.
-  const double below = std::min(margin, sheet_level);
-  const auto lifts_below = static_cast<std::size_t>(std::max(1.0, std::ceil(below / spec.region.lift_thickness - 1e-9)));
-  const double lift = below / static_cast<double>(lifts_below);
-  box.y0 = sheet_level - below;
-  box.bottom_shared = box.y0 > 1e-9;
-  // Above: lifts of the same thickness up to `margin` above the sheet's highest part, or to the
-  // surface if it falls on a lift boundary (else the last whole lift below it).
-  auto lifts_above = static_cast<std::size_t>(std::ceil((rise + margin) / lift - 1e-9));
-  const double room = (g.fill_height - sheet_level) / lift;
-  if (static_cast<double>(lifts_above) >= room - 1e-6)
-    lifts_above = static_cast<std::size_t>(std::floor(room + 1e-6));
-  box.y1 = sheet_level + static_cast<double>(lifts_above) * lift;
-  box.top_shared = box.y1 < g.fill_height - 1e-9;
-  if (box.y1 - (sheet_level + rise) < 0.5 * margin && box.top_shared)
-    throw std::invalid_argument(where + ": parameter 'Hybrid/DEM region margin' = " + std::to_string(margin) +
-                                " m leaves the particle box's top " + std::to_string(box.y1 - sheet_level - rise) +
-                                " m above the sheet, less than half the margin (lifts of " + std::to_string(lift) +
-                                " m): change the margin or 'Hybrid/lift thickness'");
-  box.x1 = g.tank_length;
-  box.x0 = crossing ? g.tank_length - spec.region.dem_region_length
-                    : std::max(0.0, g.tank_length - g.anchorage_length - margin);
-  box.left_shared = box.x0 > 1e-9;
-  box.n_lifts = lifts_below + lifts_above;
-  if (!box.left_shared && !box.bottom_shared && !box.top_shared)
-    throw std::invalid_argument(where + ": parameter 'Hybrid/DEM region margin' = " + std::to_string(margin) +
-                                " m puts the whole tank in the particle box: use 'mode' = dem");
-  const double tank_area = g.tank_length * g.fill_height, box_area = (box.x1 - box.x0) * (box.y1 - box.y0);
-  box.n_particles = static_cast<std::size_t>(
-    std::lround(static_cast<double>(spec.tank.filling.n_particles) * box_area / tank_area));
-
-  // The box as a tank of its own, in its frame (origin at (x0, y0)).
-  dem::PullOutTankSpec &t = box.box_tank;
-  t = spec.tank;
-  t.geometry.tank_length = box.x1 - box.x0;
-  t.geometry.fill_height = box.y1 - box.y0;
-  t.geometry.cover = box.y1 - sheet_level;
-  if (wrap)
-    t.geometry.upper_cover = box.y1 - (sheet_level + rise);
-  if (crossing)
-    {
-      // The box's sheet: a run-out reaching two thicknesses from the box's back (its temporary
-      // wall, which a node touches within half a thickness), through the pad and the band that
-      // will be cut off to the continuum.
-      t.geometry.anchorage = dem::Anchorage::simple_run_out;
-      t.geometry.anchorage_length = t.geometry.tank_length - 2.0 * spec.tank.sheet.thickness;
-    }
-  t.filling.n_layers = box.n_lifts;
-  t.filling.n_particles = box.n_particles;
-  if (!t.filling.layer_porosities.empty())
-    {
-      double mean = 0.0;
-      for (const double n : t.filling.layer_porosities)
-        mean += n / static_cast<double>(t.filling.layer_porosities.size());
-      t.filling.target_porosity = mean;
-      t.filling.layer_porosities.clear();
-    }
-  t.validate(where + " (the particle box)");
-  return box;
 }
 
 HybridPullOut::HybridPullOut(const HybridPullOutSpec &spec, const std::string &where,

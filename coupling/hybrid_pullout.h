@@ -20,7 +20,7 @@
 //   wall keeps that wall, the others are shared with the continuum. The box is filled in lifts as
 //   the DEM tank is (dem/tank_filling.h), its walls where the tank's are and temporary walls on
 //   its shared sides, with as many particles as the whole tank would have in its area (the same
-//   grain size); the sheet is laid on the lift at its depth.
+//   grain size); the sheet is laid on the lift at its depth. Its lifts: particle_box.h.
 // - Method 3 (InterfaceCoupling) has no band: the DEM core is the box, the continuum's mesh the
 //   tank without it, its hole's edges the deformable walls the grains touch with their own contact
 //   law (frictional, no bonds); the hole's top is the box's settled top surface (where the lid
@@ -56,6 +56,7 @@
 #include "coupling/coupled_stepper.h"
 #include "coupling/coupling_method.h"
 #include "coupling/overlap_band.h"
+#include "coupling/particle_box.h"
 #include "dem/pullout_tank.h"
 #include "fem/constitutive/soil_model.h"
 #include "fem/sheet_interface.h"
@@ -80,7 +81,9 @@ struct HybridRegionSpec
   /// touched by the grains, the rest (from the core's edge on) held by the continuum's
   /// Mohr-Coulomb interface (HybridContinuumSpec::sheet_interface) [m].
   double dem_region_length = 0.0;
-  double lift_thickness = 0.05;  ///< the box's lifts are at most this thick [m]
+  /// The box's lifts are at most this thick; 0 = automatic, from the grains and the margin
+  /// (particle_box.h) [m].
+  double lift_thickness = 0.0;
   double band_width = 0.0;       ///< w; 0 = four mean grain sizes [m]
   double cell_size = 0.0;        ///< of the continuum's cells in the band and over the core's span; 0 = w / 2 [m]
   /// The cells grow (by 1.3 per cell) away from the band up to this size; 0 = 4 x cell_size [m].
@@ -129,19 +132,6 @@ struct HybridPullOutSpec
   void validate(const std::string &where) const;
 };
 
-/// The particle box in the tank's frame, and which of its sides the continuum shares [m].
-struct ParticleBox
-{
-  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
-  bool left_shared = false, bottom_shared = false, top_shared = false;
-  std::size_t n_lifts = 0;
-  std::size_t n_particles = 0; ///< the whole tank's number in proportion to the box's area
-  /// The DEM tank spec of the box, in the box's frame (its origin at (x0, y0)).
-  dem::PullOutTankSpec box_tank;
-};
-/// Throws std::invalid_argument naming 'DEM region margin' if the box would hold the whole tank
-/// (use mode = dem) or leave a sliver of continuum thinner than the band, as HybridPullOutSpec::validate.
-ParticleBox particle_box(const HybridPullOutSpec &spec, const std::string &where);
 
 /// What the set-up measured.
 struct HybridSetUp

@@ -380,6 +380,16 @@ DemSettings tank_settling_settings(const TankFillingSpec &t)
   return s;
 }
 
+double largest_particle_extent(const TankFillingSpec &t)
+{
+  check_spec(t);
+  const double porosity = t.layer_porosities.empty() ? t.target_porosity : t.layer_porosities[0];
+  // An unbounded width: the size only, not the check (fill_tank_in_layers makes that).
+  return redf_starting_sizes(layer_redf_spec(t, 0, t.n_particles, porosity), t.width * t.height,
+                             std::numeric_limits<double>::max(), "the tank")
+    .largest_extent;
+}
+
 FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<void(double)> &progress)
 {
   check_spec(t);

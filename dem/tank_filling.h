@@ -175,6 +175,12 @@ struct FilledTank
 /// reach its porosity or the fill does not settle within max_steps_per_layer, naming the layer.
 FilledTank fill_tank_in_layers(const TankFillingSpec &spec, const std::function<void(double)> &progress = {});
 
+/// The largest particle of the fill once grown, as fill_tank_in_layers first checks it (the
+/// whole fill's draw of spec.n_particles at the first layer's porosity): the fill refuses layers
+/// thinner than five times this. Each layer's own draw scatters round it by about 1 / sqrt(its
+/// particles) [m].
+double largest_particle_extent(const TankFillingSpec &spec);
+
 /// The settings of the filled tank's system (gravity along -y, the spec's local damping and
 /// threads, the automatic time step): those a system continuing a saved tank must have.
 DemSettings tank_settling_settings(const TankFillingSpec &spec);

@@ -113,6 +113,14 @@ TEST(ParametersHash, EntriesAtTheirDefaultsLeaveIt)
   EXPECT_EQ(check_pullout_input(
               parameters_hash_test::input_with(d.path, "mode_default", base, "set mode = " + mode_default + "\n")),
             hash);
+  // 'Hybrid/lift thickness' = 0.05, its default before auto (which gives the same numbers
+  // wherever 0.05 gave any), is hashed as auto: parameters.prm files that spell it keep their hash.
+  EXPECT_EQ(check_pullout_input(parameters_hash_test::input_with(d.path, "former_lifts", base,
+                                                                 "subsection Hybrid\n  set lift thickness = 0.05\nend\n")),
+            hash);
+  EXPECT_NE(check_pullout_input(parameters_hash_test::input_with(d.path, "other_lifts", base,
+                                                                 "subsection Hybrid\n  set lift thickness = 0.1\nend\n")),
+            hash);
   // The same input with one more entry in both the declarations and the defaults.
   const auto with_future_entry = [](dealii::ParameterHandler &prm) {
     geohybrid::apps::declare_pullout_parameters(prm);

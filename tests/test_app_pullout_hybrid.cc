@@ -202,7 +202,14 @@ TEST(PullOutHybridMode, BadInputNamesTheEntryAndTheFile)
                         Case{"subsection Hybrid\n  set DEM region length = 0.25\nend\n", "Hybrid/DEM region length"},
                         Case{"subsection Hybrid\n  set DEM region length = -0.1\nend\n", "Hybrid/DEM region length"},
                         Case{"subsection Hybrid\n  set continuum interface friction angle = 95\nend\n",
-                             "Hybrid/continuum interface friction angle"}})
+                             "Hybrid/continuum interface friction angle"},
+                        Case{"subsection Hybrid\n  set lift thickness = thin\nend\n", "'Hybrid/lift thickness' = 'thin'"},
+                        Case{"subsection Hybrid\n  set lift thickness = 0\nend\n", "'Hybrid/lift thickness' = '0'"},
+                        // 0.05 m lifts (the input's) with 1,000 grains in the tank, up to 0.02 m
+                        // across: the entries to change, with values that work.
+                        Case{"subsection Filling\n  set number of particles = 1000\nend\n",
+                             "set 'Filling/number of particles' to "},
+                        Case{"subsection Filling\n  set number of particles = 1000\nend\n", "'Hybrid/lift thickness' = 0.05"}})
     {
       const std::string file = write_input(d, c.extra);
       const std::string error = error_of(file);
