@@ -1,10 +1,11 @@
 #pragma once
 // `geohybrid pullout FILE.prm`: a pull-out test of a geosynthetic anchored in the INSA tank
 // (reference paper, sections 2.2 and 4.3): simple run-out or wrap-around, head tension against
-// head displacement. 'mode = dem' runs the discrete model (dem/pullout_tank.h), 'mode = fem' the
-// continuum (fem/pullout_problem.h, apps/pullout_fem_mode.h) from the same file, also under
-// mpirun; 'mode = hybrid' the two coupled (coupling/hybrid_pullout.h, apps/pullout_hybrid_mode.h),
-// in one process.
+// head displacement. 'mode = dem' runs the discrete model (dem/pullout_tank.h,
+// apps/pullout_dem_mode.h), 'mode = fem' the continuum (fem/pullout_problem.h,
+// apps/pullout_fem_mode.h) from the same file, also under mpirun; 'mode = hybrid' the two coupled
+// (coupling/hybrid_pullout.h, apps/pullout_hybrid_mode.h), in one process. The input is read in
+// apps/pullout_input.h.
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpi.h>
@@ -15,6 +16,7 @@
 
 namespace geohybrid::apps
 {
+/// Declares every entry of the input, with its default, bounds and unit (pullout_input.cc).
 void declare_pullout_parameters(dealii::ParameterHandler &prm);
 /// Entries set after the input file is read, as (path, value): ("Filling/seed", "4").
 using ParameterOverrides = std::vector<std::pair<std::string, std::string>>;

@@ -255,7 +255,7 @@ public:
   /// (carried over list rebuilds). The fixed bodies' resultants then leave those contacts out:
   /// free them in a system whose forces are initialised again (initialise_forces_at_next_step).
   /// A tank's settled lifts while the next one grows are up to two thirds of its contacts
-  /// (tank_filling.cc).
+  /// (lift_growth.cc).
   void set_skip_contacts_between_fixed_bodies(bool skip) { skip_fixed_contacts_ = skip; }
 
   /// The next step starts, as the first one does, by evaluating every force at the present

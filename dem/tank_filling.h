@@ -24,6 +24,12 @@
 //  4. the material friction is restored, the lid is taken away, every grain is freed and the
 //     whole fill settles under gravity, walls fixed, with local damping, until equilibrium.
 //
+// The steps are files of their own: lift_placement.h (1), lift_growth.h (2), lift_settling.h
+// (4); the porosity of a slab in slab_porosity.h, the tank's walls with the front wall's slot in
+// tank_walls.h, a sheet's laying and its checks in sheet_laying.h. tank_filling.cc holds the
+// levels of the lifts and their lids (3) and each lift's share of the grains (its LiftPlan), and
+// fill_tank_in_layers, which makes the lifts one after the other and lays the sheet between them.
+//
 // The result is a DemSystem in equilibrium under gravity, with the porosity of each layer's slab
 // at the end of its growth and in the final fill (settling under the layers above compacts the
 // lower ones a little).
@@ -51,6 +57,7 @@
 // lift the same way at 0.51).
 #include "dem_system.h"
 #include "packing.h"
+#include "slab_porosity.h" // slab_porosity, which the fill reports its layers by
 
 #include <filesystem>
 #include <functional>
@@ -184,11 +191,4 @@ double largest_particle_extent(const TankFillingSpec &spec);
 /// The settings of the filled tank's system (gravity along -y, the spec's local damping and
 /// threads, the automatic time step): those a system continuing a saved tank must have.
 DemSettings tank_settling_settings(const TankFillingSpec &spec);
-
-/// Porosity of the horizontal slab y in [y_bottom, y_top], x in [x_min, x_max]: one minus the
-/// solid area inside it over its area, each disc cut exactly at the slab's top and bottom (discs
-/// are taken to lie within [x_min, x_max], as between a tank's side walls). The discs of a
-/// cluster count in proportion to their areas, scaled to the cluster's area (so the lens where
-/// they overlap is not counted twice).
-double slab_porosity(const ParticleSet &particles, double x_min, double x_max, double y_bottom, double y_top);
 } // namespace geohybrid::dem

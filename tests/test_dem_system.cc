@@ -461,7 +461,7 @@ TEST(Threads, OneAndTwoThreadsBitForBit)
   EXPECT_GT(one.n_neighbour_rebuilds(), 5u);
 }
 
-// A tank's settled lifts are fixed while the next one grows (tank_filling.cc). Skipping the
+// A tank's settled lifts are fixed while the next one grows (lift_growth.cc). Skipping the
 // contacts between two fixed bodies at rest (DemSystem::set_skip_contacts_between_fixed_bodies),
 // and the placing of their discs, must change nothing that a free body sees: the same deposition
 // with its lower half fixed, run with and without the skip, gives every free body the same bits,
