@@ -1,6 +1,7 @@
 // The hybrid pull-out (issue 6, coupling/hybrid_pullout.h): particles only in a box round the
 // anchorage, the continuum elsewhere, tied across the band; its box, its refusals, and a small
 // tank pulled.
+#include "small_hybrid_tank.h"
 #include "test_coupling_support.h"
 
 #include "coupling/hybrid_pullout.h"
@@ -85,32 +86,9 @@ TEST(ParticleBox, RefusesAMarginThatLeavesNoContinuumAndBadInput)
 /// in the whole tank, about 1,500 in the box), the soft contacts of the DEM pull-out tests.
 HybridPullOutSpec small_spec(const CouplingMethod &method)
 {
-  HybridPullOutSpec s;
-  dem::PullOutTankSpec &t = s.tank;
-  t.geometry.tank_length = 0.4;
-  t.geometry.fill_height = 0.2;
-  t.geometry.cover = 0.1;
-  t.geometry.anchorage_length = 0.25;
-  t.geometry.clamp_offset = 0.01;
-  t.max_segment_length = 0.01;
-  t.filling.n_layers = 2;
-  t.filling.n_particles = 4000;
-  t.filling.size_distribution = dem::SizeDistribution::uniform(0.8);
-  t.filling.target_porosity = 0.25;
-  t.filling.growth_stress = 5e3;
-  t.filling.equilibrium_unbalanced_ratio = 1e-3;
-  t.filling.seed = 3;
-  for (dem::ContactParameters *c : {&t.filling.particle_contact, &t.sheet.interface})
-    {
-      c->normal_stiffness = 1e7;
-      c->shear_stiffness = 0.5e7;
-    }
-  s.region.margin = 0.05;
+  HybridPullOutSpec s = small_hybrid_tank(4000, 0.05);
   s.region.lift_thickness = 0.05;
   s.region.method = method;
-  s.continuum.soil.kind = fem::SoilModelKind::linear_elastic;
-  s.continuum.soil.young_modulus = 5e6;
-  s.continuum.soil.poisson_ratio = 0.3;
   return s;
 }
 

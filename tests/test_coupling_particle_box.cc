@@ -3,6 +3,7 @@
 // automatic lifts keep 5 % room over that, and put the sheet and a wrap-around's upper part on
 // lift boundaries), the former default kept where it worked, refusals that name the entry, the
 // input file and a value that works, and a small tank that the former default refused set up.
+#include "small_hybrid_tank.h"
 #include "test_coupling_support.h"
 
 #include "coupling/hybrid_pullout.h"
@@ -152,30 +153,7 @@ TEST(ParticleBoxLifts, RefusalsNameTheEntryTheFileAndAValueThatWorks)
 // (the 0.1 m margin below the sheet, to the base, in one lift) fill and the coupled model sets up.
 TEST(ParticleBoxLifts, SmallTankTheFormerDefaultRefusedSetsUp)
 {
-  HybridPullOutSpec s;
-  dem::PullOutTankSpec &t = s.tank;
-  t.geometry.tank_length = 0.4;
-  t.geometry.fill_height = 0.2;
-  t.geometry.cover = 0.1;
-  t.geometry.anchorage_length = 0.25;
-  t.geometry.clamp_offset = 0.01;
-  t.max_segment_length = 0.01;
-  t.filling.n_layers = 2;
-  t.filling.n_particles = 1500;
-  t.filling.size_distribution = dem::SizeDistribution::uniform(0.8);
-  t.filling.target_porosity = 0.25;
-  t.filling.growth_stress = 5e3;
-  t.filling.equilibrium_unbalanced_ratio = 1e-3;
-  t.filling.seed = 3;
-  for (dem::ContactParameters *c : {&t.filling.particle_contact, &t.sheet.interface})
-    {
-      c->normal_stiffness = 1e7;
-      c->shear_stiffness = 0.5e7;
-    }
-  s.region.margin = 0.1;
-  s.continuum.soil.kind = fem::SoilModelKind::linear_elastic;
-  s.continuum.soil.young_modulus = 5e6;
-  s.continuum.soil.poisson_ratio = 0.3;
+  const HybridPullOutSpec s = small_hybrid_tank(1500, 0.1);
 
   HybridPullOutSpec former = s;
   former.region.lift_thickness = 0.05;
