@@ -24,7 +24,7 @@ TankWalls add_tank_walls(DemSystem &system, const TankFillingSpec &t, double lid
   // The lid is the growth's gauge (a lift is jammed when its grains press the lid beyond the
   // growth stress), not a wall the sheet meets: a held part of a sheet standing through a lift's
   // level (a wrap-around's return) must not load it. One did: in the particle box of
-  // examples/pullout_hybrid_wraparound_h040_b025.prm (lifts of 0.1 m, 3,667 clusters) a held
+  // examples/pullout_hybrid_wraparound_h040_b025.prm as it then was (0.1 m lifts, 3,667 clusters) a held
   // node of the return lay 0.1 mm below the second lift's lid, pressed it with kn (t/2 - 0.1 mm)
   // = 15 kN/m, 13.6 kPa over the box's 1.1 m, and the lift "jammed" at porosity 0.53 against 0.25.
   system.walls()[walls.lid].touches_sheets = false;
