@@ -1,13 +1,19 @@
 #pragma once
-// The inputs of the sweep and report tests (test_app_sweep.cc, test_app_report.cc): a fem-mode
-// base input on a small tank, whose members take about a second each, and a sweep file over it.
+// The inputs of the sweep, design and report tests (test_app_sweep.cc, test_app_design.cc,
+// test_app_report.cc): a fem-mode base input on a small tank, whose members take about a second
+// each, a sweep file over it, and their CSV outputs read back by column name.
+#include "apps/sweep_results.h"
+#include "text_file.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
+#include <vector>
 
 namespace geohybrid::testing
 {
@@ -26,6 +32,25 @@ inline std::filesystem::path fresh_test_directory(const std::string &command)
     }
   MPI_Barrier(MPI_COMM_WORLD);
   return d;
+}
+
+/// A CSV file's rows (sweep.csv, design.csv) as maps from its header's names to the fields.
+inline std::vector<std::map<std::string, std::string>> csv_rows_by_name(const std::filesystem::path &csv)
+{
+  const std::vector<std::string> lines = lines_of(csv);
+  std::vector<std::map<std::string, std::string>> rows;
+  if (lines.empty())
+    return rows;
+  const std::vector<std::string> header = apps::csv_fields(lines[0]);
+  for (std::size_t k = 1; k < lines.size(); ++k)
+    {
+      const std::vector<std::string> fields = apps::csv_fields(lines[k]);
+      std::map<std::string, std::string> row;
+      for (std::size_t c = 0; c < header.size() && c < fields.size(); ++c)
+        row[header[c]] = fields[c];
+      rows.push_back(row);
+    }
+  return rows;
 }
 
 /// A run-out in a 0.6 m x 1 m tank of elastic soil (E = 20 MPa, nu = 0.3, 15.2 kN/m3), 50 mm

@@ -42,25 +42,6 @@ std::string write_design_input(const fs::path &directory, const std::string &des
   return file.string();
 }
 
-/// design.csv's rows as maps from its header's names to the fields.
-std::vector<std::map<std::string, std::string>> design_rows(const fs::path &csv)
-{
-  const std::vector<std::string> lines = geohybrid::testing::lines_of(csv);
-  std::vector<std::map<std::string, std::string>> rows;
-  if (lines.empty())
-    return rows;
-  const std::vector<std::string> header = geohybrid::apps::csv_fields(lines[0]);
-  for (std::size_t k = 1; k < lines.size(); ++k)
-    {
-      const std::vector<std::string> fields = geohybrid::apps::csv_fields(lines[k]);
-      std::map<std::string, std::string> row;
-      for (std::size_t c = 0; c < header.size() && c < fields.size(); ++c)
-        row[header[c]] = fields[c];
-      rows.push_back(row);
-    }
-  return rows;
-}
-
 std::string design_error_of(const std::string &file)
 {
   try
@@ -170,7 +151,7 @@ TEST(Design, DesignOfAFemRunOut)
       const double failing = summary.at("highest_failing_m").get<double>();
       EXPECT_GT(answer, failing);
       EXPECT_LE(answer - failing, tolerance);
-      const auto rows = design_rows(out / "design.csv");
+      const auto rows = geohybrid::testing::csv_rows_by_name(out / "design.csv");
       ASSERT_EQ(rows.size(), summary.at("n_values_tried").get<std::size_t>());
       EXPECT_LE(rows.size(), 2u + 3u); // the ends, then ceil(log2(0.4 / 0.05)) midpoints
       EXPECT_EQ(rows[0].at("L_m"), "0.1");
@@ -235,7 +216,7 @@ TEST(Design, DesignOfAFemRunOut)
           EXPECT_TRUE(summary.at("answer_m").is_null());
           EXPECT_EQ(summary.at("n_values_tried").get<int>(), 2);
           EXPECT_NE(summary.at("message").get<std::string>().find("not bisected"), std::string::npos);
-          EXPECT_EQ(design_rows(out / "design.csv").size(), 2u);
+          EXPECT_EQ(geohybrid::testing::csv_rows_by_name(out / "design.csv").size(), 2u);
         }
       MPI_Barrier(MPI_COMM_WORLD);
     }
@@ -265,7 +246,7 @@ TEST(Design, MeanAndSpreadOverDemSeeds)
   const nlohmann::json summary = geohybrid::apps::read_summary(out / "summary.json");
   EXPECT_EQ(summary.at("outcome"), "met at the minimum") << summary.at("message");
   EXPECT_EQ(summary.at("n_runs").get<int>(), 4);
-  const auto rows = design_rows(out / "design.csv");
+  const auto rows = geohybrid::testing::csv_rows_by_name(out / "design.csv");
   ASSERT_EQ(rows.size(), 2u);
   for (const auto &row : rows)
     {

@@ -29,25 +29,6 @@ using geohybrid::testing::lines_of;
 
 namespace
 {
-/// sweep.csv's rows as maps from its header's names to the fields.
-std::vector<std::map<std::string, std::string>> sweep_rows(const fs::path &csv)
-{
-  const std::vector<std::string> lines = lines_of(csv);
-  std::vector<std::map<std::string, std::string>> rows;
-  if (lines.empty())
-    return rows;
-  const std::vector<std::string> header = geohybrid::apps::csv_fields(lines[0]);
-  for (std::size_t k = 1; k < lines.size(); ++k)
-    {
-      const std::vector<std::string> fields = geohybrid::apps::csv_fields(lines[k]);
-      std::map<std::string, std::string> row;
-      for (std::size_t c = 0; c < header.size() && c < fields.size(); ++c)
-        row[header[c]] = fields[c];
-      rows.push_back(row);
-    }
-  return rows;
-}
-
 double member_summary_number(const fs::path &directory, const std::string &key)
 {
   return geohybrid::apps::read_summary(directory / "summary.json").at(key).get<double>();
@@ -89,7 +70,7 @@ TEST(Sweep, SweepOfFemMembers)
   std::map<std::string, fs::file_time_type> written;
   if (geohybrid::testing::is_rank_zero())
     {
-      const auto rows = sweep_rows(out / "sweep.csv");
+      const auto rows = geohybrid::testing::csv_rows_by_name(out / "sweep.csv");
       ASSERT_EQ(rows.size(), 6u + 3u);
       const std::vector<std::string> names{"L_0.3_seed_1", "L_0.3_seed_2", "L_0.55_seed_1",
                                            "L_0.55_seed_2", "L_0.7_seed_1", "L_0.7_seed_2"};
@@ -142,7 +123,7 @@ TEST(Sweep, SweepOfFemMembers)
   EXPECT_EQ(geohybrid::apps::run_sweep_command(input, false), 1);
   if (geohybrid::testing::is_rank_zero())
     {
-      const auto rows = sweep_rows(out / "sweep.csv");
+      const auto rows = geohybrid::testing::csv_rows_by_name(out / "sweep.csv");
       ASSERT_EQ(rows.size(), 9u);
       for (const std::string name : {"L_0.3_seed_1", "L_0.3_seed_2", "L_0.55_seed_1"})
         EXPECT_EQ(fs::last_write_time(out / name / "summary.json"), written[name]) << name;
@@ -166,7 +147,7 @@ TEST(Sweep, MeanAndSpreadOverDemSeeds)
                    "  subsection Filling\n    set seed = 3, 4\n  end\n");
   ASSERT_EQ(geohybrid::apps::run_sweep_command(input, false, MPI_COMM_SELF), 0);
   const fs::path out = d / "sweep";
-  const auto rows = sweep_rows(out / "sweep.csv");
+  const auto rows = geohybrid::testing::csv_rows_by_name(out / "sweep.csv");
   ASSERT_EQ(rows.size(), 3u);
   const double a = member_summary_number(out / "final-displacement_0.001_seed_3", "T_max_kN_per_m"),
                b = member_summary_number(out / "final-displacement_0.001_seed_4", "T_max_kN_per_m");
