@@ -1,6 +1,6 @@
 #include "sheet_inertia_estimate.h"
 
-#include "sample_preparation.h"
+#include "tank_filling.h"
 
 #include <algorithm>
 
@@ -9,23 +9,12 @@ namespace geohybrid::dem
 SheetInertiaEstimate estimate_sheet_inertia(const PullOutTankSpec &spec)
 {
   const TankFillingSpec t = spec.resolved_filling();
-  // The fill's sizes as REDF scales them for the whole tank (as tank filling estimates its lids'
-  // band), at the loosest lift's porosity: the smallest grains, so the shortest step and the
-  // lightest sheet this estimate can give. A lighter estimate only refuses less.
-  RedfSpec whole;
-  whole.n_particles = t.n_particles;
-  whole.shape = t.shape;
-  whole.size_distribution = t.size_distribution;
-  whole.cluster_diameter_ratio = t.cluster_diameter_ratio;
-  whole.cluster_spacing = t.cluster_spacing;
-  whole.density = t.density;
-  whole.target_porosity = t.layer_porosities.empty()
-                            ? t.target_porosity
-                            : *std::max_element(t.layer_porosities.begin(), t.layer_porosities.end());
-  whole.seed = t.seed ^ 0x9e3779b97f4a7c15ULL; // the first lift's stream
-  const double thickness = t.height / static_cast<double>(t.n_layers);
-  const RedfStartingSizes sizes =
-    redf_starting_sizes(whole, t.width * t.height, std::min(t.width, thickness), "the tank");
+  // The fill's sizes as REDF scales them for the whole tank (as tank filling checks them), at the
+  // loosest lift's porosity: the smallest grains, so the shortest step and the lightest sheet
+  // this estimate can give. A lighter estimate only refuses less.
+  const RedfStartingSizes sizes = whole_fill_sizes(
+    t, t.layer_porosities.empty() ? t.target_porosity
+                                  : *std::max_element(t.layer_porosities.begin(), t.layer_porosities.end()));
   const double r = *std::min_element(sizes.radii.begin(), sizes.radii.end()) * sizes.growth_to_target;
 
   // The smallest grain alone in a tank with one of its walls: the system's critical step is the

@@ -159,14 +159,17 @@ DemSettings tank_settling_settings(const TankFillingSpec &t)
   return s;
 }
 
-double largest_particle_extent(const TankFillingSpec &t)
+RedfStartingSizes whole_fill_sizes(const TankFillingSpec &t, double porosity)
 {
   check_spec(t);
-  const double porosity = t.layer_porosities.empty() ? t.target_porosity : t.layer_porosities[0];
-  // An unbounded width: the size only, not the check (fill_tank_in_layers makes that).
+  // An unbounded width: the sizes only, not the check (fill_tank_in_layers makes that).
   return redf_starting_sizes(layer_redf_spec(t, 0, t.n_particles, porosity), t.width * t.height,
-                             std::numeric_limits<double>::max(), "the tank")
-    .largest_extent;
+                             std::numeric_limits<double>::max(), "the tank");
+}
+
+double largest_particle_extent(const TankFillingSpec &t)
+{
+  return whole_fill_sizes(t, t.layer_porosities.empty() ? t.target_porosity : t.layer_porosities[0]).largest_extent;
 }
 
 FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<void(double)> &progress)

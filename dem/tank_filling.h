@@ -57,6 +57,7 @@
 // lift the same way at 0.51).
 #include "dem_system.h"
 #include "packing.h"
+#include "sample_preparation.h" // RedfStartingSizes
 #include "slab_porosity.h" // slab_porosity, which the fill reports its layers by
 
 #include <filesystem>
@@ -182,10 +183,13 @@ struct FilledTank
 /// reach its porosity or the fill does not settle within max_steps_per_layer, naming the layer.
 FilledTank fill_tank_in_layers(const TankFillingSpec &spec, const std::function<void(double)> &progress = {});
 
+/// The whole fill's draw of spec.n_particles in the tank's area, grown to `porosity`, as
+/// fill_tank_in_layers first checks it (the first layer's random stream; no size check here).
+RedfStartingSizes whole_fill_sizes(const TankFillingSpec &spec, double porosity);
+
 /// The largest particle of the fill once grown, as fill_tank_in_layers first checks it (the
-/// whole fill's draw of spec.n_particles at the first layer's porosity): the fill refuses layers
-/// thinner than five times this. Each layer's own draw scatters round it by about 1 / sqrt(its
-/// particles) [m].
+/// whole fill's draw at the first layer's porosity): the fill refuses layers thinner than five
+/// times this. Each layer's own draw scatters round it by about 1 / sqrt(its particles) [m].
 double largest_particle_extent(const TankFillingSpec &spec);
 
 /// The settings of the filled tank's system (gravity along -y, the spec's local damping and
