@@ -3,6 +3,7 @@
 #include "apps/run_directory.h"
 #include "apps/run_health.h"
 
+#include "coupling/particle_box.h"
 #include "dem/checkpoint.h"
 #include "dem/measurements.h"
 
@@ -78,17 +79,15 @@ void PullWatch::check(const dem::PullPoint &p, const dem::DemSystem &system)
   last_u_ = u;
   T_max_ = std::max(T_max_, T);
 
-  if (setup_.tank_length)
-    {
-      const GrainsOutside out =
-        grains_outside(system, 0.0, *setup_.tank_length, 0.0, std::numeric_limits<double>::infinity(),
-                       std::numeric_limits<double>::infinity());
-      if (out.count > 0)
-        throw RunWentWrong(at() + " " + std::to_string(out.count) + " grains have left the tank (grain " +
-                           std::to_string(out.first_id) + " at (" + number(out.first_x, 4) + ", " +
-                           number(out.first_y, 4) + ") m): they crossed a wall in a time step; likely 'Pull/rate' far "
-                           "too fast, or 'Soil/Particle contact' stiffnesses too low for the stress");
-    }
+  const GrainBounds &b = setup_.grains_inside;
+  const GrainsOutside out =
+    grains_outside(system, b.x0, b.x1, b.y0, b.y1, std::numeric_limits<double>::infinity());
+  if (out.count > 0)
+    throw RunWentWrong(at() + " " + std::to_string(out.count) + " grains have left " + b.name + " (grain " +
+                       std::to_string(out.first_id) + " at (" + number(out.first_x, 4) + ", " +
+                       number(out.first_y, 4) + ") m in the particles' frame): they crossed a wall or the coupling in a "
+                       "time step; likely 'Pull/rate' far too fast, or 'Soil/Particle contact' stiffnesses too low for "
+                       "the stress");
 
   // The sheet's share: its mean inertial force over the interval against the tension it carries.
   if (T_max_ > 0.0)
@@ -140,6 +139,13 @@ std::optional<std::string> check_dem_sheet_inertia(const dem::SparSheet &sheet, 
   c.friction_limit = friction_limit;
   c.mass_scaling = sheet.parameters().mass_scaling;
   return check_sheet_inertia(c, where);
+}
+
+GrainBounds particle_box_bounds(const coupling::ParticleBox &box)
+{
+  const double room = box.lift_thickness, open = std::numeric_limits<double>::infinity();
+  return {box.left_shared ? -room : 0.0, box.x1 - box.x0, box.bottom_shared ? -room : 0.0,
+          box.top_shared ? box.y1 - box.y0 + room : open, "the particle box"};
 }
 
 std::vector<std::string> PullWatch::warnings() const

@@ -1,7 +1,8 @@
 #pragma once
 // The watch of a DEM pull (dem and hybrid modes), at each point of the curve (apps/run_health.h):
 // it stops a pull that is no pull-out any more (RunWentWrong: a non-finite tension, the head
-// moving farther between two points than 'Pull/record interval' asks, grains that left the tank,
+// moving farther between two points than 'Pull/record interval' asks, grains that left the tank
+// (or hybrid mode's particle box),
 // the sheet's inertia or the motion of the whole carrying the work) and keeps the worst of the
 // quality figures for the warnings the run finishes with. Its state goes into the checkpoint, so a
 // resumed run warns as the straight run does.
@@ -15,9 +16,21 @@ namespace geohybrid::dem
 {
 struct CommandState;
 } // namespace geohybrid::dem
+namespace geohybrid::coupling
+{
+struct ParticleBox;
+} // namespace geohybrid::coupling
 
 namespace geohybrid::apps
 {
+/// A region [x0, x1] x [y0, y1] (y1 may be infinite) the grains must not leave, named in messages
+/// ("the tank", "the particle box").
+struct GrainBounds
+{
+  double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
+  std::string name;
+};
+
 class PullWatch
 {
 public:
@@ -25,11 +38,13 @@ public:
   {
     double record_interval = 0.0;   ///< 'Pull/record interval' [m]
     double ramp_displacement = 0.0; ///< 'Pull/ramp displacement' [m]
-    /// The tank's inside [0, length] x [0, inf) in the particles' frame; none (hybrid mode, whose
-    /// particles live in a box with deformable edges): grains are not checked.
-    std::optional<double> tank_length;
-    /// Whether the particles' kinetic energy is the system's (dem mode): hybrid mode's continuum
-    /// moves too, so its ratio to the work would say nothing.
+    /// Where the grains must stay, in the particles' frame, and what to call it in a message:
+    /// dem mode's tank [0, length] x [0, inf); hybrid mode's particle box, a lift beyond its
+    /// edges shared with the continuum (they deform) and at its walls on the others.
+    GrainBounds grains_inside;
+    /// Whether the kinetic energy is checked against the clamp's work. In hybrid mode it is the
+    /// particles' only (the continuum's is left out): a lower bound of the pull's share, so a
+    /// stop or a warning is never a false one.
     bool kinetic_energy = true;
   };
 
@@ -74,6 +89,11 @@ private:
   double worst_kinetic_ = 0.0, worst_kinetic_u_ = 0.0;
   double worst_unbalanced_ = 0.0, worst_unbalanced_u_ = 0.0;
 };
+
+/// Hybrid mode's bounds: the particle box in its own frame, a lift beyond each side it shares with
+/// the continuum (those edges move with it, millimetres in a pull: a grain a lift past one has
+/// left the coupling), at the tank's walls on the others, open above a free surface.
+GrainBounds particle_box_bounds(const coupling::ParticleBox &box);
 
 /// run_health.h's check_sheet_inertia for a DEM sheet (all its nodes but the clamp, masses as
 /// scaled) pulled as `pull` asks with `time_step`, against `friction_limit` = 2 sigma_v L tan(delta).

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <vector>
@@ -236,7 +237,8 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   std::vector<std::string> warnings = in.warnings;
   if (auto w = check_dem_sheet_inertia(system.sheets()[0], in.pull, system.time_step(), 2.0 * start.one_face, where))
     warnings.push_back(*w);
-  const PullWatch::Setup watch_setup{in.pull.record_interval, in.pull.ramp_displacement, g.tank_length, true};
+  const GrainBounds tank_inside{0.0, g.tank_length, 0.0, std::numeric_limits<double>::infinity(), "the tank"};
+  const PullWatch::Setup watch_setup{in.pull.record_interval, in.pull.ramp_displacement, tank_inside, true};
   PullWatch watch(watch_setup, system, pulled ? &saved : nullptr);
   std::cout << "pullout: fill steps per layer (growth + settling)";
   for (const dem::TankLayer &layer : tank.tank.layers)

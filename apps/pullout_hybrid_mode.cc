@@ -466,13 +466,12 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
     output.emplace(out, g.sheet_width, in.profiles_at);
   const double u_first = pull->head_displacement();
   // The sheet's inertia checked as in dem mode, then the watch of the pull (apps/pull_watch.h):
-  // the box's grains and their kinetic energy are not looked at (deformable edges, a continuum
-  // that moves too).
+  // the grains kept in the box, their kinetic energy (not the continuum's) against the work.
   std::vector<std::string> warnings = in.warnings;
   if (auto w = check_dem_sheet_inertia(system.sheets()[0], in.pull, system.time_step(),
                                        2.0 * before.top_face * g.anchorage_length * mu, where))
     warnings.push_back(*w);
-  const PullWatch::Setup watch_setup{in.pull.record_interval, in.pull.ramp_displacement, std::nullopt, false};
+  const PullWatch::Setup watch_setup{in.pull.record_interval, in.pull.ramp_displacement, particle_box_bounds(box), true};
   PullWatch watch(watch_setup, system, resumed ? &saved : nullptr);
   ProgressReport progress("pulling", in.pull.final_displacement - u_first);
   const auto record = [&](const dem::PullPoint &p) {

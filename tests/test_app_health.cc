@@ -11,6 +11,7 @@
 #include "apps/pullout_seeds.h"
 #include "apps/run_health.h"
 #include "apps/summary.h"
+#include "coupling/particle_box.h"
 #include "dem/checkpoint.h"
 #include "dem/dem_system.h"
 #include "dem/sheet_inertia_estimate.h"
@@ -112,7 +113,8 @@ dem::PullPoint point(double u, double T, double inertia = 0.0)
   return p;
 }
 
-const apps::PullWatch::Setup tank_watch{0.5e-3, 0.25e-3, 0.16, true};
+const apps::PullWatch::Setup tank_watch{
+  0.5e-3, 0.25e-3, {0.0, 0.16, 0.0, std::numeric_limits<double>::infinity(), "the tank"}, true};
 } // namespace
 
 // ---- set-up refusals -----------------------------------------------------------------------
@@ -294,6 +296,34 @@ TEST(RunHealth, PullWatchStopsAPullThatIsNoPullOut)
     const std::string e = health_message([&] { watch.check(point(1.5e-3, 10.0, 6.0), inside); });
     EXPECT_TRUE(contains(e, "'Sheet/axial stiffness'")) << e;
   }
+}
+
+// Hybrid mode's bounds: the box [0.1, 0.4] x [0.05, 0.15] m of the tank (its front on the front
+// wall, the continuum on its other three sides), lifts of 0.05 m: a grain may stray a lift past a
+// shared edge, not past the front wall. In a box on the floor and under the free surface the
+// bottom is a wall and the top open. Outside, the watch stops the pull naming the particle box.
+TEST(RunHealth, HybridWatchKeepsTheGrainsInTheParticleBox)
+{
+  coupling::ParticleBox box;
+  box.x0 = 0.1, box.x1 = 0.4, box.y0 = 0.05, box.y1 = 0.15, box.lift_thickness = 0.05;
+  box.left_shared = box.bottom_shared = box.top_shared = true;
+  const apps::GrainBounds b = apps::particle_box_bounds(box);
+  EXPECT_DOUBLE_EQ(b.x0, -0.05);
+  EXPECT_DOUBLE_EQ(b.x1, 0.3);
+  EXPECT_DOUBLE_EQ(b.y0, -0.05);
+  EXPECT_DOUBLE_EQ(b.y1, 0.15);
+  box.bottom_shared = box.top_shared = false;
+  const apps::GrainBounds walled = apps::particle_box_bounds(box);
+  EXPECT_DOUBLE_EQ(walled.y0, 0.0);
+  EXPECT_TRUE(std::isinf(walled.y1));
+
+  const apps::PullWatch::Setup setup{0.5e-3, 0.25e-3, b, true};
+  const dem::DemSystem inside = one_grain(-0.04, 0.12), beyond = one_grain(-0.07, 0.12), front = one_grain(0.32, 0.1);
+  apps::PullWatch watch(setup, inside);
+  watch.check(point(0.5e-3, 10.0), inside);
+  const std::string e = health_message([&] { watch.check(point(1.0e-3, 10.0), beyond); });
+  EXPECT_TRUE(contains(e, "1 grains have left the particle box")) << e;
+  EXPECT_TRUE(contains(health_message([&] { watch.check(point(1.5e-3, 10.0), front); }), "the particle box"));
 }
 
 // The kinetic energy against the clamp's work, looked at after the ramp and two intervals: 10 N/m
