@@ -11,7 +11,7 @@ conf="${VALIDATION_CONF:-$repo/validation/campaign.conf}"
 # shellcheck source=/dev/null
 source "$conf"
 overridden=""
-for name in MODE CLUSTERS SEEDS RATE DELTA CALIBRATION_TOLERANCE SOIL; do
+for name in MODE CLUSTERS SEEDS RATE DELTA CALIBRATION_START CALIBRATION_TOLERANCE SOIL; do
   variable="VALIDATION_$name"
   if [[ -n "${!variable+set}" ]]; then
     printf -v "$name" '%s' "${!variable}"
@@ -25,6 +25,9 @@ number_re='^[0-9]+([.][0-9]*)?([eE][-+]?[0-9]+)?$'
 [[ "${SEEDS:-}" =~ ^[1-9][0-9]*$ ]] || bad_setting SEEDS "must be a positive integer"
 [[ "${RATE:-}" =~ $number_re ]] || bad_setting RATE "must be a positive number [m/s]"
 [[ -z "${DELTA:-}" || "$DELTA" =~ $number_re ]] || bad_setting DELTA "must be an angle [deg] or empty (calibrate)"
+# Older settings files have no CALIBRATION_START: the paper's angle.
+CALIBRATION_START="${CALIBRATION_START:-25.6}"
+[[ "$CALIBRATION_START" =~ $number_re ]] && awk -v a="$CALIBRATION_START" 'BEGIN{exit !(a > 0 && a < 90)}' || bad_setting CALIBRATION_START "must be an angle in (0, 90) deg"
 [[ "${CALIBRATION_TOLERANCE:-}" =~ $number_re ]] || bad_setting CALIBRATION_TOLERANCE "must be a fraction (0.02: 2 %)"
 [[ -n "${SOIL:-}" ]] || bad_setting SOIL "must name the soil's fragment (examples/soil/sand1.prm)"
 # The continuum has no fill to vary: one run per case.
@@ -58,7 +61,7 @@ cases=(
 # The interface angle is calibrated on this case against Table 3 (unless DELTA is given); its
 # attempts are the directories calibration_<case>_delta<angle>, and runs/<case> links to the chosen one.
 calibration_case="gt230_h040_b025"
-calibration_start_angle=25.60 # the paper's, calibrated on the H = 0.40 m run-out
+calibration_start_angle="$CALIBRATION_START" # the first attempt's angle (campaign.conf)
 calibration_attempts=3
 # An interface stronger than the soil only moves the failure into the soil (sand 1: 38.4 deg at
 # its peak): a calibration that asks for more says that the soil is too weak, not the interface.

@@ -128,5 +128,12 @@ grep -q "| every case within 10 % of its experiment (Table 3) | \*\*missed\*\* |
 grep -q "| mean \\\\|difference\\\\| to the experiments at most 5 % | \*\*missed\*\* | 5.9 % over the 7 complete cases |" "$md" || fail "target 2, all complete"
 expect_field gt75_h050_b050 11 20 1e-6
 
+# A calibration's first angle out of (0, 90) deg is refused, naming the setting, before anything is written.
+if VALIDATION_RUNS="$runs" VALIDATION_REPORT_DIR="$tmp/refused" VALIDATION_CALIBRATION_START=95 \
+     "$repo/bench/run_validation" --report > "$tmp/refused.log" 2>&1; then fail "CALIBRATION_START = 95 accepted"; fi
+grep -q "CALIBRATION_START = '95'.*must be an angle" "$tmp/refused.log" || fail "CALIBRATION_START = 95: $(cat "$tmp/refused.log")"
+[[ ! -e "$tmp/refused" ]] || fail "CALIBRATION_START = 95: a report directory written"
+rm -f "$tmp/refused.log"
+
 if (( failures > 0 )); then echo "REPORT.md:"; cat "$md"; exit 1; fi
 echo "validation report: all checks passed"
