@@ -320,6 +320,8 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   // The box is computed (and the margin checked) before a file is written; the refusals that need
   // the filled grains (the band against the sheet) come after the fill, with no summary.json.
   const coupling::ParticleBox box = coupling::particle_box(spec, where);
+  // The sheet and the grains are dem mode's, and so is its estimate of the sheet's inertia.
+  refuse_sheet_inertia_before_the_fill(in.tank, in.pull, where);
   const std::string out_name = prm.get("output directory");
   if (out_name.empty())
     throw std::invalid_argument(where + ": parameter 'output directory' is empty");

@@ -207,6 +207,8 @@ TEST(PullOutHybridMode, BadInputNamesTheEntryAndTheFile)
                         Case{"subsection Hybrid\n  set continuum interface friction angle = 95\nend\n",
                              "Hybrid/continuum interface friction angle"},
                         Case{"subsection Hybrid\n  set lift thickness = thin\nend\n", "'Hybrid/lift thickness' = 'thin'"},
+                        // The sheet's scaled inertia would set the answer, known before the fill.
+                        Case{"subsection Sheet\n  set axial stiffness = 1e10\nend\n", "'Sheet/axial stiffness' = 1e+10 N/m"},
                         Case{"subsection Hybrid\n  set lift thickness = 0\nend\n", "'Hybrid/lift thickness' = '0'"},
                         // 0.05 m lifts (the input's) with 1,000 grains in the tank, up to 0.02 m
                         // across: the entries to change, with values that work.
