@@ -331,6 +331,17 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   else
     output.emplace(out, g.sheet_width, in.profiles_at);
   const double u_first = pull->head_displacement();
+  // Where the pull's time goes (issue 26, part 1): the coupled steps' parts, and the pull's wall
+  // time, carried through checkpoints so that a resumed run reports the whole pull's.
+  const auto earlier = [&](const char *key, std::size_t n) {
+    const auto found = saved.reals.find(key);
+    return resumed && found != saved.reals.end() && found->second.size() == n ? found->second
+                                                                             : std::vector<double>(n, 0.0);
+  };
+  const std::vector<double> earlier_parts = earlier("pull_step_wall_times_s", 4);
+  hybrid->stepper().reset_step_times({earlier_parts[0], earlier_parts[1], earlier_parts[2], earlier_parts[3]});
+  const double earlier_pull_time = earlier("pull_wall_time_s", 1)[0], pull_start = seconds();
+  const auto pull_time = [&] { return earlier_pull_time + seconds() - pull_start; };
   // The sheet's inertia checked as in dem mode, then the watch of the pull (apps/pull_watch.h):
   // the grains kept in the box, their kinetic energy (not the continuum's) against the work.
   std::vector<std::string> warnings = in.warnings;
@@ -355,6 +366,9 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
     dem::CommandState c;
     c.name = "pullout";
     c.reals["wall_time_s"] = {earlier_wall_time + seconds()};
+    const coupling::CoupledStepTimes &t = hybrid->stepper().step_times();
+    c.reals["pull_step_wall_times_s"] = {t.continuum, t.band_drive, t.particles, t.coupling};
+    c.reals["pull_wall_time_s"] = {pull_time()};
     dem::store_pull_progress(pull->progress(), c);
     output->store(c);
     diagnostics.store(c);
@@ -411,6 +425,19 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   summary.set("resumed_at_head_displacement_m", resumed ? u_first : std::nan("")); // null for a straight run
   summary.set("fill_wall_time_s", fill_time);
   summary.set("set_up_wall_time_s", set_up_time);
+  summary.set("box_settling_wall_time_s", s.box_settling_wall_time);
+  summary.set("coupled_settling_wall_time_s", s.coupled_settling_wall_time);
+  const coupling::CoupledStepTimes &parts = hybrid->stepper().step_times();
+  summary.set("pull_wall_time_s", pull_time());
+  summary.set("pull_continuum_wall_time_s", parts.continuum);
+  summary.set("pull_coupling_wall_time_s", parts.coupling);
+  summary.set("pull_band_drive_wall_time_s", parts.band_drive);
+  summary.set("pull_particles_wall_time_s", parts.particles);
+  summary.set("pull_wall_time_parts_definition",
+              "the pull's coupled steps: the continuum's step, the coupling forces (ties or multipliers, "
+              "interface contacts, the sheet crossing), the driven particles' velocities from the continuum, "
+              "and the particles' step without the coupling; the rest of pull_wall_time_s is the curve's "
+              "points (output, watch, diagnostics) and checkpoints. Summed over a resumed run's parts");
   summary.set("wall_time_s", wall_time);
   summary.set("parameters_hash", pullout_parameters_hash(prm));
   const std::vector<std::string> found = watch.warnings();

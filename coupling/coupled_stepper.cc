@@ -3,6 +3,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -12,6 +13,12 @@ namespace geohybrid::coupling
 {
 namespace
 {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
 /// Checks what the stepper needs of both sides before it touches them.
 void check_sides(const fem::ExplicitSolver &continuum)
 {
@@ -175,7 +182,9 @@ void CoupledStepper::cross_sheet(std::size_t dem_sheet_index, double rest_length
   // force joins them directly; the continuum's sheet takes its share in its next step.
   crossing_->apply(dem_sheet, *continuum_sheet);
   particles_.set_sheet_force_hook([this](std::vector<dem::SparSheet> &sheets) {
+    const Clock::time_point start = Clock::now();
     crossing_->apply(sheets[crossing_->dem_sheet_index()], *continuum_.sheet());
+    times_.coupling += seconds_since(start);
   });
 }
 
@@ -189,6 +198,7 @@ CoupledStepper::~CoupledStepper()
 
 void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_time)
 {
+  const Clock::time_point start = Clock::now();
   forces_ = CouplingForceSums{};
   std::visit(
     [&](auto &tie) {
@@ -216,11 +226,15 @@ void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_
         }
     },
     tie_);
+  times_.coupling += seconds_since(start);
 }
 
 void CoupledStepper::step()
 {
+  Clock::time_point start = Clock::now();
   continuum_.step();
+  times_.continuum += seconds_since(start);
+  start = Clock::now();
   // The driven particles drift (fixed bodies keep their velocity) to where the continuum now is.
   dem::ParticleSet &p = particles_.particles();
   const double dt = particles_.time_step();
@@ -232,7 +246,11 @@ void CoupledStepper::step()
       p.vx[b] = (target.x() - p.x[b]) / dt;
       p.vy[b] = (target.y() - p.y[b]) / dt;
     }
+  times_.band_drive += seconds_since(start);
+  start = Clock::now();
+  const double coupling_before = times_.coupling; // the hook's time is the coupling's
   particles_.step();
+  times_.particles += seconds_since(start) - (times_.coupling - coupling_before);
 }
 
 void CoupledStepper::run_steps(unsigned int n)

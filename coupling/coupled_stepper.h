@@ -86,6 +86,17 @@ struct CouplingDiagnostics
 /// coupling) [-]. Zero when nothing changed.
 double energy_balance_error(const CouplingDiagnostics &start, const CouplingDiagnostics &now);
 
+/// Where the coupled steps' wall time went, summed over the steps since the stepper was made (or
+/// since reset_step_times()) [s]: issue 26's "per part of a coupled step". `particles` is the
+/// DEM's step without the coupling forces it asks for through its hook (`coupling`: the ties or
+/// multipliers, the interface contacts, the sheet crossing); `band_drive` the driven particles'
+/// velocities set from the continuum before the particles step.
+struct CoupledStepTimes
+{
+  double continuum = 0.0, band_drive = 0.0, particles = 0.0, coupling = 0.0;
+  double total() const { return continuum + band_drive + particles + coupling; }
+};
+
 /// How the band's particles are treated (methods 1 and 2).
 struct BandTreatment
 {
@@ -141,6 +152,10 @@ public:
   /// Method 1: the velocity gap left by the last correction (round-off) [m/s]; 0 for method 2.
   double largest_velocity_gap() const;
 
+  const CoupledStepTimes &step_times() const { return times_; }
+  /// From zero again (or from `earlier`, a resumed run's times so far).
+  void reset_step_times(const CoupledStepTimes &earlier = {}) { times_ = earlier; }
+
 private:
   void apply_coupling(dem::ParticleSet &particles, double impulse_time);
   /// What both constructors end with: the common time step, the hook, the forces at t = 0.
@@ -155,6 +170,7 @@ private:
   std::optional<SheetCrossing> crossing_;
   std::vector<Vec2> driven_tied_displacement_; ///< u(X) of each driven particle when tied [m]
   double time_step_ = 0.0;
+  CoupledStepTimes times_;
   /// The fraction of the estimated stable step taken with the band's inertia scaled (start()).
   static constexpr double scaled_band_step_fraction = 0.8;
 };

@@ -7,6 +7,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -265,6 +266,9 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
   double top_surface = -std::numeric_limits<double>::infinity();
   for (std::size_t d = 0; d < p.n_discs_total(); ++d)
     top_surface = std::max(top_surface, p.disc_y[d] + p.disc_radius[d]);
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  const Clock::time_point box_settling_start = Clock::now();
   if (spec.region.fill_under_overburden && box_.top_shared)
     {
       set_up_.overburden = spec.tank.unit_weight * (g.fill_height - box_.y1);
@@ -275,6 +279,7 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
     set_up_.box_settling_steps = step_until(
       particles, [&] { return dem::unbalanced_force_ratio(particles) < fill_ratio; }, spec.max_settling_steps,
       [&] { return where + ": the particle box did not settle after its sheet was cut"; });
+  set_up_.box_settling_wall_time = seconds_since(box_settling_start);
   if (interface && box_.top_shared)
     {
       cy1 = top_surface;
@@ -460,6 +465,7 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
   const double p_wave_modulus = elasticity.lame_lambda() + 2.0 * elasticity.shear_modulus();
   const double wave_crossing = std::max(g.fill_height, g.tank_length) / std::sqrt(p_wave_modulus / settings.density);
   const auto min_steps = static_cast<std::uint64_t>(10.0 * wave_crossing / stepper_->time_step());
+  const Clock::time_point coupled_settling_start = Clock::now();
   for (;;)
     {
       stepper_->run_steps(500);
@@ -467,7 +473,10 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
       set_up_.settled_unbalanced_ratio =
         std::max(dem::unbalanced_force_ratio(particles), continuum_->out_of_balance_ratio());
       if (set_up_.settled_unbalanced_ratio < target && set_up_.settling_steps >= min_steps)
-        break;
+        {
+          set_up_.coupled_settling_wall_time = seconds_since(coupled_settling_start);
+          break;
+        }
       if (set_up_.settling_steps >= spec.max_settling_steps)
         {
           std::ostringstream message;

@@ -152,6 +152,9 @@ struct HybridSetUp
   std::size_t n_sheet_nodes_particles = 0, n_sheet_nodes_continuum = 0;
   double crossing_x = 0.0;
   double particle_time_step = 0.0; ///< the particles' own step, before the coupling [s]
+  /// Wall time of the box's own settling (box_settling_steps) and of the coupled settling
+  /// (settling_steps) [s]; the continuum's and the band's building is the rest of the set-up.
+  double box_settling_wall_time = 0.0, coupled_settling_wall_time = 0.0;
 };
 
 class HybridPullOut

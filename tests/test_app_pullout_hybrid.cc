@@ -154,6 +154,22 @@ TEST(PullOutHybridMode, WritesTheContractWithTheHybridKeys)
   EXPECT_NE(summary.find("\"warnings\": []"), std::string::npos) << summary;
   EXPECT_GT(summary_number(summary, "fill_wall_time_s"), 0.0);
   EXPECT_GE(summary_number(summary, "wall_time_s"), summary_number(summary, "fill_wall_time_s"));
+  // Where the time went (issue 26): the set-up's settlings within it, the coupled steps' parts
+  // each taken and within the pull's wall time, the pull after the set-up.
+  const double set_up = summary_number(summary, "set_up_wall_time_s"), pull = summary_number(summary, "pull_wall_time_s");
+  EXPECT_GT(summary_number(summary, "coupled_settling_wall_time_s"), 0.0);
+  EXPECT_LE(summary_number(summary, "box_settling_wall_time_s") + summary_number(summary, "coupled_settling_wall_time_s"),
+            set_up - summary_number(summary, "fill_wall_time_s"));
+  double parts = 0.0;
+  for (const char *part : {"pull_continuum_wall_time_s", "pull_coupling_wall_time_s", "pull_particles_wall_time_s"})
+    {
+      EXPECT_GT(summary_number(summary, part), 0.0) << part;
+      parts += summary_number(summary, part);
+    }
+  EXPECT_GE(summary_number(summary, "pull_band_drive_wall_time_s"), 0.0);
+  parts += summary_number(summary, "pull_band_drive_wall_time_s");
+  EXPECT_LE(parts, pull);
+  EXPECT_LE(set_up + pull, summary_number(summary, "wall_time_s") * (1.0 + 1e-9));
   for (const char *key : {"experimental_T_max_kN_per_m", "T_max_difference_percent", "gamma_H_Pa",
                           "sigma_v_top_face_Pa", "n_sheet_nodes"})
     EXPECT_NE(summary.find(std::string("\"") + key + "\""), std::string::npos) << key;
