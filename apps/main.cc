@@ -7,6 +7,7 @@
 //   geohybrid pullout FILE.prm             pull-out of a geosynthetic anchored in the INSA tank
 //   geohybrid pullout FILE.prm --seeds N   the same on N fills (seeds s, s+1, ...), averaged
 //   geohybrid pullout FILE.prm --print-parameters-hash   the input checked, its physics' hash printed
+//   geohybrid sweep FILE.prm --print-parameters-hash     the same for each member of the sweep
 //   mpirun -np N geohybrid pullout FILE.prm  the same with 'mode = fem' on N MPI ranks
 //   ('mode = hybrid': particles round the sheet, the continuum elsewhere; one process)
 //   geohybrid coupling-test FILE.prm       the coupling's patch, wave and energy benchmarks for one method
@@ -115,6 +116,7 @@ void print_usage(std::ostream &out)
          "       geohybrid pullout FILE.prm --seeds N [--resume]   (N fills, seeds s, s+1, ...; the averaged curve; under mpirun spread over the ranks)\n"
          "       geohybrid pullout FILE.prm --print-parameters-hash   (FILE checked as a run would, nothing\n"
          "                                              written; the hash its summary.json would hold)\n"
+         "       geohybrid sweep FILE.prm --print-parameters-hash   (each member's name and hash, nothing written)\n"
          "       geohybrid compare DIR1 DIR2 ... [--output FILE.png]   (pull-out curves in one PNG)\n"
          "       geohybrid report DIR1 DIR2 ... [--output FILE.html]   (one self-contained HTML page of the results)\n"
          "       geohybrid --help\n\n"
@@ -189,7 +191,8 @@ int main(int argc, char **argv)
         }
       else if (argument == "--print-parameters" && !print_parameters)
         print_parameters = true;
-      else if (argument == "--print-parameters-hash" && !std::strcmp(argv[1], "pullout") && !print_hash)
+      else if (argument == "--print-parameters-hash" &&
+               (!std::strcmp(argv[1], "pullout") || !std::strcmp(argv[1], "sweep")) && !print_hash)
         print_hash = true;
       else if (argument.rfind("--", 0) != 0 && input_file.empty())
         input_file = argument;
@@ -204,7 +207,8 @@ int main(int argc, char **argv)
                        : (input_file.empty() || (print_hash && (resume || overwrite || n_seeds > 0))))
     {
       std::cerr << "geohybrid " << argv[1] << ": expected one input file (optionally followed by --resume or "
-                << "--overwrite, or for pullout by --seeds N or --print-parameters-hash) or --print-parameters\n";
+                << "--overwrite, or for pullout by --seeds N, for pullout and sweep by --print-parameters-hash) or "
+                   "--print-parameters\n";
       return 2;
     }
   if (resume && overwrite)
@@ -221,6 +225,14 @@ int main(int argc, char **argv)
           dealii::ParameterHandler prm;
           found->second.declare(prm);
           prm.print_parameters(std::cout, dealii::ParameterHandler::OutputStyle::PRM);
+          return 0;
+        }
+      if (print_hash && !std::strcmp(argv[1], "sweep"))
+        {
+          const auto hashes = geohybrid::apps::sweep_member_hashes(input_file);
+          if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+            for (const auto &[member, hash] : hashes)
+              std::cout << member << ' ' << hash << '\n';
           return 0;
         }
       if (print_hash)

@@ -111,6 +111,27 @@ int run_sweep_command(const std::string &input_file, bool /*resume*/, MPI_Comm c
   return run_sweep(sweep, prm, communicator).status;
 }
 
+std::vector<std::pair<std::string, std::string>> sweep_member_hashes(const std::string &input_file)
+{
+  dealii::ParameterHandler prm;
+  declare_sweep_parameters(prm);
+  const SweepDefinition sweep = parse_sweep(input_file, prm);
+  std::vector<std::pair<std::string, std::string>> hashes;
+  for (const SweepMember &member : sweep.members)
+    {
+      try
+        {
+          hashes.emplace_back(member.name,
+                              check_pullout_input(sweep.base_input, MPI_COMM_SELF, member_overrides(sweep, member)));
+        }
+      catch (const std::exception &e)
+        {
+          throw std::runtime_error(input_file + ": member " + member.name + " (" + describe(member) + "): " + e.what());
+        }
+    }
+  return hashes;
+}
+
 SweepRun run_sweep(const SweepDefinition &sweep, const dealii::ParameterHandler &prm, MPI_Comm communicator)
 {
   const bool with_mpi = dealii::Utilities::MPI::job_supports_mpi();

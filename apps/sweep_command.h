@@ -23,6 +23,7 @@
 #include <mpi.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace geohybrid::apps
@@ -32,6 +33,12 @@ namespace geohybrid::apps
 /// continues the one in its directory. Throws std::runtime_error for a bad sweep file (before
 /// anything is written) and Interrupted after a signal.
 int run_sweep_command(const std::string &input_file, bool resume, MPI_Comm communicator = MPI_COMM_WORLD);
+
+/// `geohybrid sweep FILE.prm --print-parameters-hash`: each member's name and the parameters_hash
+/// its summary.json would hold, in the sweep's order, each member's input checked as its run
+/// would check it (check_pullout_input); nothing written. Throws as run_sweep_command, or naming
+/// the member whose input is refused.
+std::vector<std::pair<std::string, std::string>> sweep_member_hashes(const std::string &input_file);
 
 struct SweepRun
 {

@@ -156,7 +156,10 @@ SweepDefinition make_sweep(const std::string &input_file, const ParameterHandler
                                        "' is not one that '" + path + "' takes (geohybrid pullout --print-parameters)");
             }
         }
-      if (std::set<std::string>(entry.values.begin(), entry.values.end()).size() != entry.values.size())
+      // A grid (and the seeds) would run one member twice; a list may repeat a value of one
+      // entry (B = 0.25 at two depths): there the members' whole tuples must differ (below).
+      if ((sweep.grid || path == sweep_seed_entry) &&
+          std::set<std::string>(entry.values.begin(), entry.values.end()).size() != entry.values.size())
         throw std::runtime_error(where + ": 'Sweep/" + path + "' = '" + text + "' repeats a value");
       if (path == sweep_seed_entry)
         seeds = entry;
@@ -187,8 +190,20 @@ SweepDefinition make_sweep(const std::string &input_file, const ParameterHandler
   if (n_varied == 0)
     combinations.emplace_back();
   else if (!sweep.grid)
-    for (std::size_t k = 0; k < sweep.entries[0].values.size(); ++k)
-      combinations.emplace_back(n_varied, k);
+    {
+      std::map<std::vector<std::string>, std::size_t> seen;
+      for (std::size_t k = 0; k < sweep.entries[0].values.size(); ++k)
+        {
+          combinations.emplace_back(n_varied, k);
+          std::vector<std::string> tuple;
+          for (std::size_t e = 0; e < n_varied; ++e)
+            tuple.push_back(sweep.entries[e].values[k]);
+          const auto [at, inserted] = seen.emplace(tuple, k);
+          if (!inserted)
+            throw std::runtime_error(where + ": 'combination' = list: values " + std::to_string(at->second + 1) + " and " +
+                                     std::to_string(k + 1) + " of every entry are the same: one member would run twice");
+        }
+    }
   else
     {
       std::vector<std::size_t> digit(n_varied, 0);

@@ -167,6 +167,32 @@ TEST(Sweep, MeanAndSpreadOverDemSeeds)
   EXPECT_EQ(geohybrid::apps::read_summary(out / sweep.members[1].name / "summary.json").at("parameters_hash"),
             geohybrid::apps::pullout_parameters_hash(prm));
   EXPECT_EQ(geohybrid::testing::read_text(out / "sweep.png").substr(1, 3), "PNG");
+  // --print-parameters-hash: each member's name and the hash its run's summary holds.
+  const auto hashes = geohybrid::apps::sweep_member_hashes(input);
+  ASSERT_EQ(hashes.size(), 2u);
+  for (const auto &[name, hash] : hashes)
+    EXPECT_EQ(geohybrid::apps::read_summary(out / name / "summary.json").at("parameters_hash"), hash) << name;
+  fs::remove_all(d);
+}
+
+// A list may repeat one entry's value where the members differ (the validation campaign's B =
+// 0.25 m at two depths): two members, in the list's order, each with its pair.
+TEST(Sweep, AListMayRepeatAValueOfOneEntry)
+{
+  const fs::path d = geohybrid::testing::fresh_test_directory("sweep");
+  if (!geohybrid::testing::is_rank_zero())
+    return;
+  geohybrid::testing::write_fem_base_input(d);
+  const std::string input = geohybrid::testing::write_sweep_input(
+    d, "base.prm", "  subsection Anchorage\n    set L = 0.3, 0.3\n    set H = 0.5, 0.6\n  end\n", "set combination = list\n");
+  dealii::ParameterHandler sweep_prm;
+  geohybrid::apps::declare_sweep_parameters(sweep_prm);
+  const auto sweep = geohybrid::apps::parse_sweep(input, sweep_prm);
+  ASSERT_EQ(sweep.members.size(), 2u);
+  const auto &second = sweep.members[1].values;
+  ASSERT_EQ(second.size(), 2u);
+  for (const auto &[path, value] : second)
+    EXPECT_EQ(value, path == "Anchorage/L" ? "0.3" : "0.6") << path;
   fs::remove_all(d);
 }
 
@@ -188,6 +214,11 @@ TEST(Sweep, BadSweepFilesNameTheEntry)
                         Case{"base.prm", "  subsection Anchorage\n    set L = 0.3, 0.4\n    set H = 0.5\n  end\n",
                              "set combination = list\n", "as many values of each entry"},
                         Case{"base.prm", "  subsection Anchorage\n    set L = 0.3, 0.3\n  end\n", "", "repeats a value"},
+                        // A list may repeat one entry's value, not a whole member.
+                        Case{"base.prm", "  subsection Anchorage\n    set L = 0.3, 0.3\n    set H = 0.5, 0.5\n  end\n",
+                             "set combination = list\n", "values 1 and 2 of every entry are the same"},
+                        Case{"base.prm", "  subsection Filling\n    set seed = 1, 1\n  end\n", "set combination = list\n",
+                             "repeats a value"},
                         Case{"base.prm", "", "", "gives no values"},
                         Case{"missing.prm", "  subsection Anchorage\n    set L = 0.3\n  end\n", "", "'missing.prm' does not exist"},
                         Case{"base.prm", "  subsection Anchorage\n    set Q = 0.3\n  end\n", "", "Q"}})
