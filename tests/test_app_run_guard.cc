@@ -4,9 +4,11 @@
 // test_app_pullout*.cc.
 #include "apps/dem_command.h"
 #include "apps/output_guard.h"
+#include "apps/pullout_command.h"
 #include "apps/resume_check.h"
 #include "apps/run_directory.h"
 #include "temporary_directory.h"
+#include "tiny_pullout_input.h"
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -165,6 +167,26 @@ TEST(InputFile, EmptyAndBinaryFilesRefused)
   EXPECT_NE(binary.find("is not a text file (a control byte at offset 0)"), std::string::npos) << binary;
   EXPECT_EQ(binary.find("ELF"), std::string::npos) << binary;
   EXPECT_EQ(message_of("fine.prm", "set threads = 1\n"), "");
+}
+
+// An output directory that cannot be made (under a file, or in /proc, where even root cannot
+// write) is refused before the run, naming it, in dem and pullout alike.
+TEST(OutputDirectory, AnUnwritablePathIsRefusedBeforeAnythingIsWritten)
+{
+  geohybrid::testing::TemporaryDirectory d("unwritable");
+  std::ofstream(d.path / "a_file") << "not a directory\n";
+  const std::string input = geohybrid::testing::write_tiny_pullout_input(d.path);
+  for (const std::string out : {(d.path / "a_file" / "out").string(), std::string("/proc/geohybrid_unwritable")})
+    {
+      const std::string pullout = guard_error_of(
+        [&] { geohybrid::apps::run_pullout_command(input, false, {{"output directory", out}}); });
+      EXPECT_NE(pullout.find("cannot create output directory '" + out + "'"), std::string::npos) << pullout;
+      const fs::path dem = d.path / "dem.prm";
+      std::ofstream(dem) << "set output directory = " << out << "\n";
+      const std::string scene = guard_error_of([&] { geohybrid::apps::run_dem_command(dem.string(), false); });
+      EXPECT_NE(scene.find("cannot create output directory '" + out + "'"), std::string::npos) << scene;
+    }
+  EXPECT_FALSE(fs::exists(d.path / "out")); // the tiny input's own directory: nothing made there either
 }
 
 // A run that fails ends its progress line where it stands: a pull that fails at 0 mm does not
