@@ -3,6 +3,7 @@
 // the loop's check, the exit status and the files on disk are those a user meets: the status of a
 // process the signal killed (143, 130), no summary.json, a checkpoint, every recorded row in the
 // curve files, and a --resume that ends where a run that never stopped ends, bit for bit.
+#include "small_hybrid_pullout_input.h"
 #include "text_file.h"
 #include "tiny_pullout_input.h"
 
@@ -179,6 +180,42 @@ TEST(PullOutInterrupted, SigtermKeepsTheRowsAndResumesBitForBit)
   const std::string T_max = summary_text(d / "straight" / "summary.json", "T_max_kN_per_m");
   EXPECT_FALSE(T_max.empty());
   EXPECT_EQ(summary_text(d / "stopped" / "summary.json", "T_max_kN_per_m"), T_max);
+  fs::remove_all(d);
+}
+
+// Hybrid mode shares the pull's loop: a SIGTERM during the coupled pull stops it with 143, a
+// checkpoint (the particles' and the continuum's states), the rows so far and no summary.json;
+// --resume repeats the set-up from the filled box and ends with the straight run's curve, bit for
+// bit. About 40 s of CPU: two fills of the small hybrid tank's box, two pulls of 1 mm.
+TEST(PullOutInterrupted, HybridSigtermKeepsTheRowsAndResumesBitForBit)
+{
+  const fs::path d = interrupt_test_directory();
+  fs::create_directories(d / "straight");
+  fs::create_directories(d / "stopped");
+  const std::string straight = geohybrid::testing::write_small_hybrid_pullout_input(d / "straight"),
+                    stopped = geohybrid::testing::write_small_hybrid_pullout_input(d / "stopped");
+  ASSERT_EQ(run_geohybrid({"pullout", straight}, d / "straight.log"), 0) << read_text(d / "straight.log");
+  const std::vector<std::string> expected = lines_of(d / "straight" / "out" / "pullout_curve.csv");
+  ASSERT_EQ(expected.size(), 1u + 6u);
+
+  const pid_t child = start_geohybrid({"pullout", stopped}, d / "stopped.log");
+  const fs::path curve = d / "stopped" / "out" / "pullout_curve.csv";
+  ASSERT_TRUE(wait_while_running(child, [&] { return rows_of(curve) >= 2; })) << read_text(d / "stopped.log");
+  ASSERT_EQ(kill(child, SIGTERM), 0);
+  EXPECT_EQ(wait_for(child), 143) << read_text(d / "stopped.log");
+  EXPECT_NE(read_text(d / "stopped.log").find(stopped + " --resume"), std::string::npos) << read_text(d / "stopped.log");
+  EXPECT_FALSE(fs::exists(d / "stopped" / "out" / "summary.json"));
+  EXPECT_TRUE(fs::exists(d / "stopped" / "out" / "checkpoint.h5"));
+  const std::vector<std::string> kept = lines_of(curve);
+  ASSERT_LT(kept.size(), expected.size()) << "the pull had finished before the signal";
+  for (std::size_t k = 0; k < kept.size(); ++k)
+    EXPECT_EQ(kept[k], expected[k]) << "line " << k;
+
+  ASSERT_EQ(run_geohybrid({"pullout", stopped, "--resume"}, d / "resumed.log"), 0) << read_text(d / "resumed.log");
+  for (const char *file : {"pullout_curve.csv", "sheet_displacements.csv", "sheet_tension.csv", "coupling_diagnostics.csv"})
+    EXPECT_TRUE(read_text(d / "stopped" / "out" / file) == read_text(d / "straight" / "out" / file)) << file;
+  EXPECT_EQ(summary_text(d / "stopped" / "out" / "summary.json", "T_max_kN_per_m"),
+            summary_text(d / "straight" / "out" / "summary.json", "T_max_kN_per_m"));
   fs::remove_all(d);
 }
 

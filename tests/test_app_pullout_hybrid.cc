@@ -4,6 +4,7 @@
 // files, summary.json with the hybrid's keys), and bad input refused by name before summary.json.
 #include "apps/pullout_command.h"
 #include "dem/checkpoint.h"
+#include "small_hybrid_pullout_input.h"
 #include "text_file.h"
 
 #include <gtest/gtest.h>
@@ -28,33 +29,6 @@ fs::path test_directory()
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
-}
-
-/// The library test's tank and grains (soft contacts, kn = 1e7 N/m/m), the sheet 0.25 m long
-/// under 0.1 m, a 0.05 m margin; the continuum linear elastic (E = 5 MPa, nu = 0.3) with the
-/// library's damping (0.7); pulled 1 mm at 5 mm/s, a point every 0.2 mm.
-std::string write_input(const fs::path &directory, const std::string &extra)
-{
-  const fs::path file = directory / "pullout.prm";
-  std::ofstream(file) << "set output directory = " << (directory / "out").string() << "\n"
-                      << "set threads = 1\nset mode = hybrid\n"
-                      << "subsection Tank\n  set length = 0.4\n  set fill height = 0.2\n  set clamp offset = 0.01\nend\n"
-                      << "subsection Anchorage\n  set H = 0.1\n  set L = 0.25\nend\n"
-                      << "subsection Sheet\n  set segment length = 0.01\n  subsection Interface\n"
-                      << "    set normal stiffness = 1e7\n    set shear stiffness = 5e6\n  end\nend\n"
-                      << "subsection Soil\n  subsection Particle contact\n    set normal stiffness = 1e7\n"
-                      << "    set shear stiffness = 5e6\n  end\nend\n"
-                      << "subsection Filling\n  set number of particles = 4000\n  set number of layers = 2\n"
-                      << "  set size ratio = 0.8\n  set target porosity = 0.25\n  set growth stress = 5e3\n"
-                      << "  set equilibrium unbalanced ratio = 1e-3\n  set seed = 3\nend\n"
-                      << "subsection Pull\n  set rate = 0.005\n  set final displacement = 0.001\n"
-                      << "  set record interval = 0.0002\n  set tension profiles at = 0.0005, 0.001\nend\n"
-                      << "subsection Output\n  set experimental T_max = 0.5\nend\n"
-                      << "subsection Continuum\n  set soil model = linear elastic\n  set Young modulus = 5e6\n"
-                      << "  set Poisson ratio = 0.3\n  set local damping = 0.7\nend\n"
-                      << "subsection Hybrid\n  set DEM region margin = 0.05\n  set lift thickness = 0.05\nend\n"
-                      << extra;
-  return file.string();
 }
 
 std::string error_of(const std::string &file, bool resume = false)
@@ -84,7 +58,7 @@ double summary_number(const std::string &json, const std::string &key)
 TEST(PullOutHybridMode, WritesTheContractWithTheHybridKeys)
 {
   const fs::path d = test_directory();
-  const std::string input = write_input(d, "");
+  const std::string input = geohybrid::testing::write_small_hybrid_pullout_input(d, "");
   ASSERT_EQ(error_of(input), "");
   const fs::path out = d / "out";
   const std::vector<std::string> curve = lines_of(out / "pullout_curve.csv");
@@ -181,7 +155,7 @@ TEST(PullOutHybridMode, WritesTheContractWithTheHybridKeys)
 TEST(PullOutHybridMode, SheetCrossesIntoTheContinuumFromTheInput)
 {
   const fs::path d = test_directory();
-  ASSERT_EQ(error_of(write_input(d, "subsection Hybrid\n  set DEM region length = 0.15\n"
+  ASSERT_EQ(error_of(geohybrid::testing::write_small_hybrid_pullout_input(d, "subsection Hybrid\n  set DEM region length = 0.15\n"
                                     "  set continuum interface friction angle = 20\nend\n")),
             "");
   std::stringstream text;
@@ -232,7 +206,7 @@ TEST(PullOutHybridMode, BadInputNamesTheEntryAndTheFile)
                              "set 'Filling/number of particles' to "},
                         Case{"subsection Filling\n  set number of particles = 1000\nend\n", "'Hybrid/lift thickness' = 0.05"}})
     {
-      const std::string file = write_input(d, c.extra);
+      const std::string file = geohybrid::testing::write_small_hybrid_pullout_input(d, c.extra);
       const std::string error = error_of(file);
       EXPECT_NE(error.find(c.expected), std::string::npos) << c.extra << " -> " << error;
       EXPECT_NE(error.find(file), std::string::npos) << c.extra << " -> " << error;
@@ -247,7 +221,7 @@ TEST(PullOutHybridMode, BadInputNamesTheEntryAndTheFile)
 TEST(PullOutHybridMode, AFastPullFinishesWithTheWatchsWarning)
 {
   const fs::path d = test_directory();
-  const std::string input = write_input(d, "subsection Pull\n  set rate = 0.1\nend\n");
+  const std::string input = geohybrid::testing::write_small_hybrid_pullout_input(d, "subsection Pull\n  set rate = 0.1\nend\n");
   ASSERT_EQ(error_of(input), "");
   const std::string summary = read_text(d / "out" / "summary.json");
   EXPECT_NE(summary.find("the pull's kinetic energy reached 13.1 % of the clamp's work"), std::string::npos) << summary;
@@ -268,7 +242,7 @@ TEST(PullOutHybridMode, ResumesAStoppedPullBitForBit)
                             "  set continuum interface friction angle = 20\nend\n"
                             "subsection Continuum\n  set soil model = Mohr-Coulomb\n  set friction angle = 25\n"
                             "  set dilatancy angle = 0\nend\n";
-  const std::string input = write_input(d, extra);
+  const std::string input = geohybrid::testing::write_small_hybrid_pullout_input(d, extra);
   const auto run_file = [&](const std::string &name) {
     const fs::path file = d / (name + ".prm");
     std::ofstream(file) << read_text(input) << "set output directory = " << (d / name).string() << "\n";
