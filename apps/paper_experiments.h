@@ -2,7 +2,7 @@
 // The maximum head tensions of the reference paper's wrap-around anchorages, the one copy of them
 // in the code: Lajevardi, Briançon, Dias et al., "Experimental and numerical studies for
 // geosynthetics anchorage with wrap around" (../shared/reference/ beside the repository, text of the paper; the
-// same values as ../shared/data/pullout_experiments.csv, which bench/validation_report reads):
+// same values as validation/paper/pullout_experiments.csv, which bench/validation_report reads):
 //
 //   Table 3: INSA tank, sand 1, experiments (b = 0.5 m), kN/m;
 //   Table 4: INSA tank, gravel, experiments (b = 0.5 m), kN/m;

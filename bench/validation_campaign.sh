@@ -3,8 +3,9 @@
 #
 # Settings: validation/campaign.conf (VALIDATION_CONF), each entry NAME overridden by
 # VALIDATION_NAME when that is set (VALIDATION_DELTA= set and empty means: calibrate).
-# Paper's values: $repo/../shared/data/pullout_experiments.csv (Table 3: experiments; Table 6:
-# the paper's PFC2D, already in kN/m there) and materials.csv (the sheets, Table 2), read, not copied.
+# Paper's values: validation/paper/pullout_experiments.csv (Table 3: experiments; Table 6: the
+# paper's PFC2D, already in kN/m there) and materials.csv (the sheets, Table 2): the repository's
+# copies of the paper's data, so that a clone alone runs the campaign and its tests.
 
 conf="${VALIDATION_CONF:-$repo/validation/campaign.conf}"
 [[ -f "$conf" ]] || { echo "$me: the campaign's settings '$conf' do not exist" >&2; exit 1; }
@@ -36,8 +37,8 @@ seeds_asked="$SEEDS"
 # Every angle is written with two decimals: the hash sees the text of an entry, 25.6 is not 25.60.
 angle_text() { awk -v a="$1" 'BEGIN { printf "%.2f", a }'; }
 
-experiments="$repo/../shared/data/pullout_experiments.csv"
-materials="$repo/../shared/data/materials.csv"
+experiments="$repo/validation/paper/pullout_experiments.csv"
+materials="$repo/validation/paper/materials.csv"
 
 # The cases in the order they run (issue 23): GT230 H = 0.40 m (the calibration case first), the
 # run-outs, GT230 H = 0.50 m, GT75. D2 = H - D1; L = 1 m. A layer boundary must lie at the sheet
