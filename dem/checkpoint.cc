@@ -1,6 +1,7 @@
 #include "checkpoint.h"
 
 #include "hdf5_handles.h"
+#include "hdf5_types.h"
 #include "hdf5_writable_file.h"
 
 #include <cstdio>
@@ -22,6 +23,7 @@ namespace
 using hdf5::check;
 using hdf5::fail;
 using hdf5::Handle;
+using hdf5::Type;
 
 constexpr const char *format_name = "geohybrid DEM checkpoint";
 
@@ -51,47 +53,6 @@ static_assert(sizeof(DemSystemState) == 1408, "DemSystemState changed: update th
 #endif
 
 std::string describe(const std::filesystem::path &file) { return "DEM checkpoint '" + file.string() + "'"; }
-
-// ---- types ----------------------------------------------------------------------------------------
-
-/// File and memory HDF5 types of the C++ types stored, and the class a file type must have.
-template <typename T>
-struct Type;
-template <>
-struct Type<double>
-{
-  static hid_t file() { return H5T_IEEE_F64LE; }
-  static hid_t memory() { return H5T_NATIVE_DOUBLE; }
-  static constexpr H5T_class_t type_class = H5T_FLOAT;
-};
-template <>
-struct Type<std::int64_t>
-{
-  static hid_t file() { return H5T_STD_I64LE; }
-  static hid_t memory() { return H5T_NATIVE_INT64; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-};
-template <>
-struct Type<std::uint64_t>
-{
-  static hid_t file() { return H5T_STD_U64LE; }
-  static hid_t memory() { return H5T_NATIVE_UINT64; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-};
-template <>
-struct Type<std::uint32_t>
-{
-  static hid_t file() { return H5T_STD_U32LE; }
-  static hid_t memory() { return H5T_NATIVE_UINT32; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-};
-template <>
-struct Type<std::uint8_t>
-{
-  static hid_t file() { return H5T_STD_U8LE; }
-  static hid_t memory() { return H5T_NATIVE_UINT8; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-};
 
 // ---- writing ----------------------------------------------------------------------------------------
 
