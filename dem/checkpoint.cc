@@ -1,5 +1,6 @@
 #include "checkpoint.h"
 
+#include "checkpoint_writer.h"
 #include "hdf5_handles.h"
 #include "hdf5_types.h"
 #include "hdf5_writable_file.h"
@@ -27,84 +28,7 @@ using hdf5::Type;
 
 constexpr const char *format_name = "geohybrid DEM checkpoint";
 
-// A field added to a stored structure must be added to the file too, or a resumed run silently
-// differs from the straight one. These sizes (x86-64, libstdc++) make such a change fail to
-// compile here: store the new field below (raising checkpoint_format_version if files of the old
-// layout exist), extend test_dem_checkpoint's comparison, then update the size.
-#if defined(__x86_64__) && defined(__GLIBCXX__)
-static_assert(sizeof(ContactState) == 24, "ContactState changed: update the checkpoint");
-static_assert(sizeof(ContactParameters) == 56, "ContactParameters changed: update the checkpoint");
-static_assert(sizeof(WallServo) == 40, "WallServo changed: update the checkpoint");
-static_assert(sizeof(Wall) == 272, "Wall changed: update the checkpoint");
-static_assert(sizeof(ParticleSet) == 22 * sizeof(std::vector<double>), "ParticleSet changed: update the checkpoint");
-static_assert(sizeof(PairContacts) == 17 * sizeof(std::vector<double>) + sizeof(std::size_t),
-              "PairContacts changed: update the checkpoint (the adjacency and chunk plan are derived, not stored)");
-static_assert(sizeof(WallContacts) == 7 * sizeof(std::vector<double>), "WallContacts changed: update the checkpoint");
-static_assert(sizeof(EnergyBudget) == 10 * sizeof(double), "EnergyBudget changed: update the checkpoint");
-static_assert(sizeof(SheetParameters) == 4 * sizeof(double) + sizeof(ContactParameters),
-              "SheetParameters changed: update the checkpoint");
-static_assert(sizeof(SparSheet) == 17 * sizeof(std::vector<double>) + sizeof(std::string) + sizeof(SheetParameters) +
-                                     sizeof(LinearContactLaw),
-              "SparSheet changed: update the checkpoint");
-static_assert(sizeof(SheetContacts) == 14 * sizeof(std::vector<double>), "SheetContacts changed: update the checkpoint");
-static_assert(sizeof(SheetWallContacts) == 7 * sizeof(std::vector<double>),
-              "SheetWallContacts changed: update the checkpoint");
-static_assert(sizeof(DemSystemState) == 1408, "DemSystemState changed: update the checkpoint");
-#endif
-
 std::string describe(const std::filesystem::path &file) { return "DEM checkpoint '" + file.string() + "'"; }
-
-// ---- writing ----------------------------------------------------------------------------------------
-
-template <typename T>
-void put_attr(hid_t parent, const char *name, T value, const std::string &where)
-{
-  hdf5::write_attribute(parent, name, Type<T>::file(), Type<T>::memory(), &value, where);
-}
-
-/// A dataset of `values.size() / columns` rows (one dimension if columns == 1).
-template <typename T, typename Allocator>
-void put(hid_t parent, const char *name, const std::vector<T, Allocator> &values, const std::string &where,
-         std::size_t columns = 1)
-{
-  std::vector<hsize_t> dims{values.size() / columns};
-  if (columns > 1)
-    dims.push_back(columns);
-  hdf5::write_dataset(parent, name, Type<T>::file(), Type<T>::memory(), dims, values.data(), where);
-}
-
-void put(hid_t parent, const char *name, const std::vector<Vec2> &values, const std::string &where)
-{
-  std::vector<double> flat;
-  flat.reserve(2 * values.size());
-  for (const Vec2 &v : values)
-    flat.insert(flat.end(), {v.x(), v.y()});
-  put(parent, name, flat, where, 2);
-}
-
-void put(hid_t parent, const char *name, const Vec2 &value, const std::string &where)
-{
-  put(parent, name, std::vector<double>{value.x(), value.y()}, where);
-}
-
-std::uint8_t as_byte(bool b) { return b ? 1 : 0; }
-
-void put_states(hid_t parent, const SoaVector<ContactState> &states, const std::string &where)
-{
-  std::vector<double> tangential_force(states.size()), dashpot_force(states.size());
-  std::vector<std::uint8_t> bonded(states.size()), touching(states.size());
-  for (std::size_t q = 0; q < states.size(); ++q)
-    {
-      tangential_force[q] = states[q].tangential_force;
-      bonded[q] = as_byte(states[q].bonded);
-      touching[q] = as_byte(states[q].touching);
-      dashpot_force[q] = states[q].dashpot_force;
-    }
-  put(parent, "tangential_force", tangential_force, where);
-  put(parent, "bonded", bonded, where);
-  put(parent, "touching", touching, where);
-  put(parent, "dashpot_force", dashpot_force, where);
-}
 
 std::string numbered(const char *prefix, std::size_t index)
 {
@@ -116,213 +40,6 @@ std::string numbered(const char *prefix, std::size_t index)
 const char *control_name(WallControl control)
 {
   return control == WallControl::servo_stress ? "servo_stress" : "prescribed_velocity";
-}
-
-void put_law(hid_t parent, const char *name, const ContactParameters &c, const std::string &where)
-{
-  Handle law = hdf5::create_group(parent, name, where);
-  put_attr(law.get(), "normal_stiffness", c.normal_stiffness, where);
-  put_attr(law.get(), "shear_stiffness", c.shear_stiffness, where);
-  put_attr(law.get(), "friction_angle_deg", c.friction_angle_deg, where);
-  put_attr(law.get(), "shear_strength", c.shear_strength, where);
-  put_attr(law.get(), "tensile_strength", c.tensile_strength, where);
-  put_attr(law.get(), "restitution", c.restitution, where);
-  put_attr(law.get(), "bond_new_contacts", as_byte(c.bond_new_contacts), where);
-}
-
-void put_wall(hid_t group, const Wall &wall, const std::string &where)
-{
-  hdf5::write_string_attribute(group, "name", wall.name, where);
-  hdf5::write_string_attribute(group, "control", control_name(wall.control), where);
-  put_attr<std::uint64_t>(group, "n_contacts", wall.n_contacts, where);
-  put_attr(group, "servo_target_stress", wall.servo.target_stress, where);
-  put_attr(group, "servo_relaxation", wall.servo.relaxation, where);
-  put_attr(group, "servo_max_speed", wall.servo.max_speed, where);
-  put_attr(group, "servo_integral_gain", wall.servo.integral_gain, where);
-  put_attr(group, "servo_integral", wall.servo.integral, where);
-  put(group, "start", wall.start, where);
-  put(group, "end", wall.end, where);
-  put(group, "velocity", wall.velocity, where);
-  put(group, "force_from_particles", wall.force_from_particles, where);
-  put_attr(group, "loaded_length", wall.loaded_length, where);
-  put_attr<std::uint64_t>(group, "touches_sheets", wall.touches_sheets ? 1 : 0, where);
-  put_law(group, "law", wall.law.parameters(), where);
-}
-
-void put_sheet(hid_t group, const SparSheet &sheet, const SheetContacts &c, const std::string &where)
-{
-  hdf5::write_string_attribute(group, "name", sheet.name(), where);
-  const SheetParameters &parameters = sheet.parameters();
-  put_attr(group, "axial_stiffness", parameters.axial_stiffness, where);
-  put_attr(group, "thickness", parameters.thickness, where);
-  put_attr(group, "areal_mass", parameters.areal_mass, where);
-  put_attr(group, "mass_scaling", parameters.mass_scaling, where);
-  put_law(group, "interface", parameters.interface, where);
-  put(group, "x", sheet.x, where);
-  put(group, "y", sheet.y, where);
-  put(group, "vx", sheet.vx, where);
-  put(group, "vy", sheet.vy, where);
-  put(group, "fx", sheet.fx, where);
-  put(group, "fy", sheet.fy, where);
-  put(group, "mass", sheet.mass, where);
-  put(group, "inverse_mass", sheet.inverse_mass, where);
-  put(group, "gravitational_mass", sheet.gravitational_mass, where);
-  put(group, "damping_fx", sheet.damping_fx, where);
-  put(group, "damping_fy", sheet.damping_fy, where);
-  put(group, "reaction_x", sheet.reaction_x, where);
-  put(group, "reaction_y", sheet.reaction_y, where);
-  put(group, "load_x", sheet.load_x, where);
-  put(group, "load_y", sheet.load_y, where);
-  put(group, "rest_length", sheet.rest_length, where);
-  put(group, "tension", sheet.tension, where);
-  {
-    Handle g = hdf5::create_group(group, "contacts", where);
-    put(g.get(), "disc", c.disc, where);
-    put(g.get(), "segment", c.segment, where);
-    put_states(g.get(), c.state, where);
-    put(g.get(), "position", c.position, where);
-    put(g.get(), "overlap", c.overlap, where);
-    put(g.get(), "counted", c.counted, where);
-    put(g.get(), "force_x", c.force_x, where);
-    put(g.get(), "force_y", c.force_y, where);
-    put(g.get(), "elastic_normal_force", c.elastic_normal_force, where);
-    put(g.get(), "friction_work", c.friction_work, where);
-    put(g.get(), "viscous_work", c.viscous_work, where);
-    put(g.get(), "node_x_at_rebuild", c.node_x_at_rebuild, where);
-    put(g.get(), "node_y_at_rebuild", c.node_y_at_rebuild, where);
-  }
-  {
-    Handle g = hdf5::create_group(group, "wall_contacts", where);
-    put_attr<std::uint64_t>(g.get(), "count", c.walls.size(), where);
-    for (std::size_t w = 0; w < c.walls.size(); ++w)
-      {
-        const SheetWallContacts &wc = c.walls[w];
-        Handle one = hdf5::create_group(g.get(), numbered("wall", w), where);
-        put(one.get(), "node", wc.node, where);
-        put_states(one.get(), wc.state, where);
-        put(one.get(), "force_x", wc.force_x, where);
-        put(one.get(), "force_y", wc.force_y, where);
-        put(one.get(), "elastic_normal_force", wc.elastic_normal_force, where);
-        put(one.get(), "friction_work", wc.friction_work, where);
-        put(one.get(), "viscous_work", wc.viscous_work, where);
-      }
-  }
-}
-
-void put_everything(hid_t file, const DemSystemState &s, const std::string &where)
-{
-  hdf5::write_string_attribute(file, "format", format_name, where);
-  put_attr(file, "format_version", checkpoint_format_version, where);
-  put_attr(file, "time", s.time, where);
-  put_attr(file, "time_step", s.time_step, where);
-  put_attr(file, "skin", s.skin, where);
-  put_attr(file, "radius_growth_since_rebuild", s.radius_growth_since_rebuild, where);
-  put_law(file, "particle_law", s.particle_contact, where);
-  put_attr(file, "step_count", s.step_count, where);
-  put_attr(file, "n_rebuilds", s.n_rebuilds, where);
-  put_attr(file, "n_broken_bonds", s.n_broken_bonds, where);
-  put_attr(file, "rebuild_needed", as_byte(s.rebuild_needed), where);
-  {
-    Handle g = hdf5::create_group(file, "energy", where);
-    const EnergyBudget &e = s.accumulated;
-    put_attr(g.get(), "kinetic", e.kinetic, where);
-    put_attr(g.get(), "gravitational", e.gravitational, where);
-    put_attr(g.get(), "elastic", e.elastic, where);
-    put_attr(g.get(), "friction_dissipated", e.friction_dissipated, where);
-    put_attr(g.get(), "viscous_dissipated", e.viscous_dissipated, where);
-    put_attr(g.get(), "local_damping_dissipated", e.local_damping_dissipated, where);
-    put_attr(g.get(), "boundary_work", e.boundary_work, where);
-    put_attr(g.get(), "sheet_kinetic", e.sheet_kinetic, where);
-    put_attr(g.get(), "sheet_elastic", e.sheet_elastic, where);
-    put_attr(g.get(), "interface_friction_dissipated", e.interface_friction_dissipated, where);
-  }
-  {
-    Handle g = hdf5::create_group(file, "particles", where);
-    const ParticleSet &p = s.particles;
-    put(g.get(), "body_id", p.body_id, where);
-    put(g.get(), "x", p.x, where);
-    put(g.get(), "y", p.y, where);
-    put(g.get(), "rotation", p.rotation, where);
-    put(g.get(), "vx", p.vx, where);
-    put(g.get(), "vy", p.vy, where);
-    put(g.get(), "omega", p.omega, where);
-    put(g.get(), "fx", p.fx, where);
-    put(g.get(), "fy", p.fy, where);
-    put(g.get(), "torque", p.torque, where);
-    put(g.get(), "mass", p.mass, where);
-    put(g.get(), "inertia", p.inertia, where);
-    put(g.get(), "inverse_mass", p.inverse_mass, where);
-    put(g.get(), "inverse_inertia", p.inverse_inertia, where);
-    put(g.get(), "first_disc", p.first_disc, where);
-    put(g.get(), "n_discs", p.n_discs, where);
-    put(g.get(), "disc_body", p.disc_body, where);
-    put(g.get(), "disc_radius", p.disc_radius, where);
-    put(g.get(), "disc_offset_x", p.disc_offset_x, where);
-    put(g.get(), "disc_offset_y", p.disc_offset_y, where);
-    put(g.get(), "disc_x", p.disc_x, where);
-    put(g.get(), "disc_y", p.disc_y, where);
-  }
-  {
-    Handle g = hdf5::create_group(file, "pairs", where);
-    const PairContacts &c = s.pairs;
-    put(g.get(), "disc_i", c.disc_i, where);
-    put(g.get(), "disc_j", c.disc_j, where);
-    put_states(g.get(), c.state, where);
-    put(g.get(), "force_x", c.force_x, where);
-    put(g.get(), "force_y", c.force_y, where);
-    put(g.get(), "torque_i", c.torque_i, where);
-    put(g.get(), "torque_j", c.torque_j, where);
-    put(g.get(), "elastic_normal_force", c.elastic_normal_force, where);
-    put(g.get(), "friction_work", c.friction_work, where);
-    put(g.get(), "viscous_work", c.viscous_work, where);
-  }
-  {
-    Handle g = hdf5::create_group(file, "walls", where);
-    put_attr<std::uint64_t>(g.get(), "count", s.walls.size(), where);
-    for (std::size_t w = 0; w < s.walls.size(); ++w)
-      {
-        Handle one = hdf5::create_group(g.get(), numbered("wall", w), where);
-        put_wall(one.get(), s.walls[w], where);
-      }
-  }
-  {
-    Handle g = hdf5::create_group(file, "wall_contacts", where);
-    put_attr<std::uint64_t>(g.get(), "count", s.wall_contacts.size(), where);
-    for (std::size_t w = 0; w < s.wall_contacts.size(); ++w)
-      {
-        const WallContacts &c = s.wall_contacts[w];
-        Handle one = hdf5::create_group(g.get(), numbered("wall", w), where);
-        put(one.get(), "disc", c.disc, where);
-        put_states(one.get(), c.state, where);
-        put(one.get(), "force_x", c.force_x, where);
-        put(one.get(), "force_y", c.force_y, where);
-        put(one.get(), "elastic_normal_force", c.elastic_normal_force, where);
-        put(one.get(), "friction_work", c.friction_work, where);
-        put(one.get(), "viscous_work", c.viscous_work, where);
-      }
-  }
-  {
-    Handle g = hdf5::create_group(file, "verlet", where);
-    put(g.get(), "disc_x_at_rebuild", s.disc_x_at_rebuild, where);
-    put(g.get(), "disc_y_at_rebuild", s.disc_y_at_rebuild, where);
-    put(g.get(), "wall_start_at_rebuild", s.wall_start_at_rebuild, where);
-  }
-  put(file, "wall_force_previous", s.wall_force_previous, where);
-  {
-    Handle g = hdf5::create_group(file, "damping", where);
-    put(g.get(), "fx", s.damping_fx, where);
-    put(g.get(), "fy", s.damping_fy, where);
-    put(g.get(), "torque", s.damping_torque, where);
-  }
-  {
-    Handle g = hdf5::create_group(file, "sheets", where);
-    put_attr<std::uint64_t>(g.get(), "count", s.sheets.size(), where);
-    for (std::size_t k = 0; k < s.sheets.size(); ++k)
-      {
-        Handle one = hdf5::create_group(g.get(), numbered("sheet", k), where);
-        put_sheet(one.get(), s.sheets[k], s.sheet_contacts[k], where);
-      }
-  }
 }
 
 /// Flushes a file (or directory) to the disk. A directory that cannot be opened is skipped
@@ -765,14 +482,6 @@ DemSystemState get_everything(hid_t file, std::uint32_t version, const std::stri
   return s;
 }
 
-std::string joined_keys(const std::vector<std::string> &keys)
-{
-  std::string text;
-  for (const std::string &k : keys)
-    text += k + "\n";
-  return text;
-}
-
 std::vector<std::string> split_keys(const std::string &text)
 {
   std::vector<std::string> keys;
@@ -780,43 +489,6 @@ std::vector<std::string> split_keys(const std::string &text)
   for (std::size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1)
     keys.push_back(text.substr(start, end - start));
   return keys;
-}
-
-void put_command(hid_t file, const CommandState &c, const std::string &where)
-{
-  Handle g = hdf5::create_group(file, "command", where);
-  hdf5::write_string_attribute(g.get(), "name", c.name, where);
-  std::vector<std::string> real_keys, count_keys;
-  {
-    Handle reals = hdf5::create_group(g.get(), "reals", where);
-    for (const auto &[key, values] : c.reals)
-      {
-        put(reals.get(), key.c_str(), values, where);
-        real_keys.push_back(key);
-      }
-  }
-  {
-    Handle counts = hdf5::create_group(g.get(), "counts", where);
-    for (const auto &[key, values] : c.counts)
-      {
-        put(counts.get(), key.c_str(), values, where);
-        count_keys.push_back(key);
-      }
-  }
-  hdf5::write_string_attribute(g.get(), "real_keys", joined_keys(real_keys), where);
-  hdf5::write_string_attribute(g.get(), "count_keys", joined_keys(count_keys), where);
-  if (c.texts.empty())
-    return; // the layout of the files written before texts existed
-  std::vector<std::string> text_keys;
-  {
-    Handle texts = hdf5::create_group(g.get(), "texts", where);
-    for (const auto &[key, text] : c.texts)
-      {
-        hdf5::write_string_attribute(texts.get(), key.c_str(), text, where);
-        text_keys.push_back(key);
-      }
-  }
-  hdf5::write_string_attribute(g.get(), "text_keys", joined_keys(text_keys), where);
 }
 
 CommandState get_command(hid_t file, const std::string &where)
@@ -861,9 +533,12 @@ void write_checkpoint_file(const DemSystemState &state, const CommandState *comm
       {
         hdf5::SilenceErrors silence;
         hdf5::WritableFile h5 = hdf5::WritableFile::create(temporary, where);
-        put_everything(h5.get(), state, where);
+        checkpoint_fields::Writer root(h5.get(), where);
+        root.text("format", format_name);
+        root.attribute("format_version", checkpoint_format_version);
+        checkpoint_fields::visit_fields(state, root);
         if (command)
-          put_command(h5.get(), *command, where);
+          root.group("command", [&](checkpoint_fields::Writer &in) { checkpoint_fields::visit_fields(*command, in); });
         h5.close();
       }
       sync_to_disk(temporary, true, where);
