@@ -1,11 +1,12 @@
 #include "checkpoint.h"
 
+#include "checkpoint_fields.h"
+#include "checkpoint_reader.h"
+#include "checkpoint_writer.h"
 #include "hdf5_handles.h"
 #include "hdf5_writable_file.h"
 
-#include <cstdio>
 #include <cstring>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -15,354 +16,20 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+// The files themselves: written whole under a temporary name and renamed, read after checking
+// what they are. What they hold is the field lists of checkpoint_fields.h.
 namespace geohybrid::dem
 {
 namespace
 {
-using hdf5::check;
+using checkpoint_fields::Reader;
+using checkpoint_fields::Writer;
 using hdf5::fail;
 using hdf5::Handle;
 
 constexpr const char *format_name = "geohybrid DEM checkpoint";
 
-// A field added to a stored structure must be added to the file too, or a resumed run silently
-// differs from the straight one. These sizes (x86-64, libstdc++) make such a change fail to
-// compile here: store the new field below (raising checkpoint_format_version if files of the old
-// layout exist), extend test_dem_checkpoint's comparison, then update the size.
-#if defined(__x86_64__) && defined(__GLIBCXX__)
-static_assert(sizeof(ContactState) == 24, "ContactState changed: update the checkpoint");
-static_assert(sizeof(ContactParameters) == 56, "ContactParameters changed: update the checkpoint");
-static_assert(sizeof(WallServo) == 40, "WallServo changed: update the checkpoint");
-static_assert(sizeof(Wall) == 272, "Wall changed: update the checkpoint");
-static_assert(sizeof(ParticleSet) == 22 * sizeof(std::vector<double>), "ParticleSet changed: update the checkpoint");
-static_assert(sizeof(PairContacts) == 17 * sizeof(std::vector<double>) + sizeof(std::size_t),
-              "PairContacts changed: update the checkpoint (the adjacency and chunk plan are derived, not stored)");
-static_assert(sizeof(WallContacts) == 7 * sizeof(std::vector<double>), "WallContacts changed: update the checkpoint");
-static_assert(sizeof(EnergyBudget) == 10 * sizeof(double), "EnergyBudget changed: update the checkpoint");
-static_assert(sizeof(SheetParameters) == 4 * sizeof(double) + sizeof(ContactParameters),
-              "SheetParameters changed: update the checkpoint");
-static_assert(sizeof(SparSheet) == 17 * sizeof(std::vector<double>) + sizeof(std::string) + sizeof(SheetParameters) +
-                                     sizeof(LinearContactLaw),
-              "SparSheet changed: update the checkpoint");
-static_assert(sizeof(SheetContacts) == 14 * sizeof(std::vector<double>), "SheetContacts changed: update the checkpoint");
-static_assert(sizeof(SheetWallContacts) == 7 * sizeof(std::vector<double>),
-              "SheetWallContacts changed: update the checkpoint");
-static_assert(sizeof(DemSystemState) == 1408, "DemSystemState changed: update the checkpoint");
-#endif
-
 std::string describe(const std::filesystem::path &file) { return "DEM checkpoint '" + file.string() + "'"; }
-
-// ---- types ----------------------------------------------------------------------------------------
-
-/// File and memory HDF5 types of the C++ types stored, and the class a file type must have.
-template <typename T>
-struct Type;
-template <>
-struct Type<double>
-{
-  static hid_t file() { return H5T_IEEE_F64LE; }
-  static hid_t memory() { return H5T_NATIVE_DOUBLE; }
-  static constexpr H5T_class_t type_class = H5T_FLOAT;
-};
-template <>
-struct Type<std::int64_t>
-{
-  static hid_t file() { return H5T_STD_I64LE; }
-  static hid_t memory() { return H5T_NATIVE_INT64; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-};
-template <>
-struct Type<std::uint64_t>
-{
-  static hid_t file() { return H5T_STD_U64LE; }
-  static hid_t memory() { return H5T_NATIVE_UINT64; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-};
-template <>
-struct Type<std::uint32_t>
-{
-  static hid_t file() { return H5T_STD_U32LE; }
-  static hid_t memory() { return H5T_NATIVE_UINT32; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-};
-template <>
-struct Type<std::uint8_t>
-{
-  static hid_t file() { return H5T_STD_U8LE; }
-  static hid_t memory() { return H5T_NATIVE_UINT8; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-};
-
-// ---- writing ----------------------------------------------------------------------------------------
-
-template <typename T>
-void put_attr(hid_t parent, const char *name, T value, const std::string &where)
-{
-  hdf5::write_attribute(parent, name, Type<T>::file(), Type<T>::memory(), &value, where);
-}
-
-/// A dataset of `values.size() / columns` rows (one dimension if columns == 1).
-template <typename T, typename Allocator>
-void put(hid_t parent, const char *name, const std::vector<T, Allocator> &values, const std::string &where,
-         std::size_t columns = 1)
-{
-  std::vector<hsize_t> dims{values.size() / columns};
-  if (columns > 1)
-    dims.push_back(columns);
-  hdf5::write_dataset(parent, name, Type<T>::file(), Type<T>::memory(), dims, values.data(), where);
-}
-
-void put(hid_t parent, const char *name, const std::vector<Vec2> &values, const std::string &where)
-{
-  std::vector<double> flat;
-  flat.reserve(2 * values.size());
-  for (const Vec2 &v : values)
-    flat.insert(flat.end(), {v.x(), v.y()});
-  put(parent, name, flat, where, 2);
-}
-
-void put(hid_t parent, const char *name, const Vec2 &value, const std::string &where)
-{
-  put(parent, name, std::vector<double>{value.x(), value.y()}, where);
-}
-
-std::uint8_t as_byte(bool b) { return b ? 1 : 0; }
-
-void put_states(hid_t parent, const SoaVector<ContactState> &states, const std::string &where)
-{
-  std::vector<double> tangential_force(states.size()), dashpot_force(states.size());
-  std::vector<std::uint8_t> bonded(states.size()), touching(states.size());
-  for (std::size_t q = 0; q < states.size(); ++q)
-    {
-      tangential_force[q] = states[q].tangential_force;
-      bonded[q] = as_byte(states[q].bonded);
-      touching[q] = as_byte(states[q].touching);
-      dashpot_force[q] = states[q].dashpot_force;
-    }
-  put(parent, "tangential_force", tangential_force, where);
-  put(parent, "bonded", bonded, where);
-  put(parent, "touching", touching, where);
-  put(parent, "dashpot_force", dashpot_force, where);
-}
-
-std::string numbered(const char *prefix, std::size_t index)
-{
-  char name[48];
-  std::snprintf(name, sizeof(name), "%s_%06zu", prefix, index);
-  return name;
-}
-
-const char *control_name(WallControl control)
-{
-  return control == WallControl::servo_stress ? "servo_stress" : "prescribed_velocity";
-}
-
-void put_law(hid_t parent, const char *name, const ContactParameters &c, const std::string &where)
-{
-  Handle law = hdf5::create_group(parent, name, where);
-  put_attr(law.get(), "normal_stiffness", c.normal_stiffness, where);
-  put_attr(law.get(), "shear_stiffness", c.shear_stiffness, where);
-  put_attr(law.get(), "friction_angle_deg", c.friction_angle_deg, where);
-  put_attr(law.get(), "shear_strength", c.shear_strength, where);
-  put_attr(law.get(), "tensile_strength", c.tensile_strength, where);
-  put_attr(law.get(), "restitution", c.restitution, where);
-  put_attr(law.get(), "bond_new_contacts", as_byte(c.bond_new_contacts), where);
-}
-
-void put_wall(hid_t group, const Wall &wall, const std::string &where)
-{
-  hdf5::write_string_attribute(group, "name", wall.name, where);
-  hdf5::write_string_attribute(group, "control", control_name(wall.control), where);
-  put_attr<std::uint64_t>(group, "n_contacts", wall.n_contacts, where);
-  put_attr(group, "servo_target_stress", wall.servo.target_stress, where);
-  put_attr(group, "servo_relaxation", wall.servo.relaxation, where);
-  put_attr(group, "servo_max_speed", wall.servo.max_speed, where);
-  put_attr(group, "servo_integral_gain", wall.servo.integral_gain, where);
-  put_attr(group, "servo_integral", wall.servo.integral, where);
-  put(group, "start", wall.start, where);
-  put(group, "end", wall.end, where);
-  put(group, "velocity", wall.velocity, where);
-  put(group, "force_from_particles", wall.force_from_particles, where);
-  put_attr(group, "loaded_length", wall.loaded_length, where);
-  put_attr<std::uint64_t>(group, "touches_sheets", wall.touches_sheets ? 1 : 0, where);
-  put_law(group, "law", wall.law.parameters(), where);
-}
-
-void put_sheet(hid_t group, const SparSheet &sheet, const SheetContacts &c, const std::string &where)
-{
-  hdf5::write_string_attribute(group, "name", sheet.name(), where);
-  const SheetParameters &parameters = sheet.parameters();
-  put_attr(group, "axial_stiffness", parameters.axial_stiffness, where);
-  put_attr(group, "thickness", parameters.thickness, where);
-  put_attr(group, "areal_mass", parameters.areal_mass, where);
-  put_attr(group, "mass_scaling", parameters.mass_scaling, where);
-  put_law(group, "interface", parameters.interface, where);
-  put(group, "x", sheet.x, where);
-  put(group, "y", sheet.y, where);
-  put(group, "vx", sheet.vx, where);
-  put(group, "vy", sheet.vy, where);
-  put(group, "fx", sheet.fx, where);
-  put(group, "fy", sheet.fy, where);
-  put(group, "mass", sheet.mass, where);
-  put(group, "inverse_mass", sheet.inverse_mass, where);
-  put(group, "gravitational_mass", sheet.gravitational_mass, where);
-  put(group, "damping_fx", sheet.damping_fx, where);
-  put(group, "damping_fy", sheet.damping_fy, where);
-  put(group, "reaction_x", sheet.reaction_x, where);
-  put(group, "reaction_y", sheet.reaction_y, where);
-  put(group, "load_x", sheet.load_x, where);
-  put(group, "load_y", sheet.load_y, where);
-  put(group, "rest_length", sheet.rest_length, where);
-  put(group, "tension", sheet.tension, where);
-  {
-    Handle g = hdf5::create_group(group, "contacts", where);
-    put(g.get(), "disc", c.disc, where);
-    put(g.get(), "segment", c.segment, where);
-    put_states(g.get(), c.state, where);
-    put(g.get(), "position", c.position, where);
-    put(g.get(), "overlap", c.overlap, where);
-    put(g.get(), "counted", c.counted, where);
-    put(g.get(), "force_x", c.force_x, where);
-    put(g.get(), "force_y", c.force_y, where);
-    put(g.get(), "elastic_normal_force", c.elastic_normal_force, where);
-    put(g.get(), "friction_work", c.friction_work, where);
-    put(g.get(), "viscous_work", c.viscous_work, where);
-    put(g.get(), "node_x_at_rebuild", c.node_x_at_rebuild, where);
-    put(g.get(), "node_y_at_rebuild", c.node_y_at_rebuild, where);
-  }
-  {
-    Handle g = hdf5::create_group(group, "wall_contacts", where);
-    put_attr<std::uint64_t>(g.get(), "count", c.walls.size(), where);
-    for (std::size_t w = 0; w < c.walls.size(); ++w)
-      {
-        const SheetWallContacts &wc = c.walls[w];
-        Handle one = hdf5::create_group(g.get(), numbered("wall", w), where);
-        put(one.get(), "node", wc.node, where);
-        put_states(one.get(), wc.state, where);
-        put(one.get(), "force_x", wc.force_x, where);
-        put(one.get(), "force_y", wc.force_y, where);
-        put(one.get(), "elastic_normal_force", wc.elastic_normal_force, where);
-        put(one.get(), "friction_work", wc.friction_work, where);
-        put(one.get(), "viscous_work", wc.viscous_work, where);
-      }
-  }
-}
-
-void put_everything(hid_t file, const DemSystemState &s, const std::string &where)
-{
-  hdf5::write_string_attribute(file, "format", format_name, where);
-  put_attr(file, "format_version", checkpoint_format_version, where);
-  put_attr(file, "time", s.time, where);
-  put_attr(file, "time_step", s.time_step, where);
-  put_attr(file, "skin", s.skin, where);
-  put_attr(file, "radius_growth_since_rebuild", s.radius_growth_since_rebuild, where);
-  put_law(file, "particle_law", s.particle_contact, where);
-  put_attr(file, "step_count", s.step_count, where);
-  put_attr(file, "n_rebuilds", s.n_rebuilds, where);
-  put_attr(file, "n_broken_bonds", s.n_broken_bonds, where);
-  put_attr(file, "rebuild_needed", as_byte(s.rebuild_needed), where);
-  {
-    Handle g = hdf5::create_group(file, "energy", where);
-    const EnergyBudget &e = s.accumulated;
-    put_attr(g.get(), "kinetic", e.kinetic, where);
-    put_attr(g.get(), "gravitational", e.gravitational, where);
-    put_attr(g.get(), "elastic", e.elastic, where);
-    put_attr(g.get(), "friction_dissipated", e.friction_dissipated, where);
-    put_attr(g.get(), "viscous_dissipated", e.viscous_dissipated, where);
-    put_attr(g.get(), "local_damping_dissipated", e.local_damping_dissipated, where);
-    put_attr(g.get(), "boundary_work", e.boundary_work, where);
-    put_attr(g.get(), "sheet_kinetic", e.sheet_kinetic, where);
-    put_attr(g.get(), "sheet_elastic", e.sheet_elastic, where);
-    put_attr(g.get(), "interface_friction_dissipated", e.interface_friction_dissipated, where);
-  }
-  {
-    Handle g = hdf5::create_group(file, "particles", where);
-    const ParticleSet &p = s.particles;
-    put(g.get(), "body_id", p.body_id, where);
-    put(g.get(), "x", p.x, where);
-    put(g.get(), "y", p.y, where);
-    put(g.get(), "rotation", p.rotation, where);
-    put(g.get(), "vx", p.vx, where);
-    put(g.get(), "vy", p.vy, where);
-    put(g.get(), "omega", p.omega, where);
-    put(g.get(), "fx", p.fx, where);
-    put(g.get(), "fy", p.fy, where);
-    put(g.get(), "torque", p.torque, where);
-    put(g.get(), "mass", p.mass, where);
-    put(g.get(), "inertia", p.inertia, where);
-    put(g.get(), "inverse_mass", p.inverse_mass, where);
-    put(g.get(), "inverse_inertia", p.inverse_inertia, where);
-    put(g.get(), "first_disc", p.first_disc, where);
-    put(g.get(), "n_discs", p.n_discs, where);
-    put(g.get(), "disc_body", p.disc_body, where);
-    put(g.get(), "disc_radius", p.disc_radius, where);
-    put(g.get(), "disc_offset_x", p.disc_offset_x, where);
-    put(g.get(), "disc_offset_y", p.disc_offset_y, where);
-    put(g.get(), "disc_x", p.disc_x, where);
-    put(g.get(), "disc_y", p.disc_y, where);
-  }
-  {
-    Handle g = hdf5::create_group(file, "pairs", where);
-    const PairContacts &c = s.pairs;
-    put(g.get(), "disc_i", c.disc_i, where);
-    put(g.get(), "disc_j", c.disc_j, where);
-    put_states(g.get(), c.state, where);
-    put(g.get(), "force_x", c.force_x, where);
-    put(g.get(), "force_y", c.force_y, where);
-    put(g.get(), "torque_i", c.torque_i, where);
-    put(g.get(), "torque_j", c.torque_j, where);
-    put(g.get(), "elastic_normal_force", c.elastic_normal_force, where);
-    put(g.get(), "friction_work", c.friction_work, where);
-    put(g.get(), "viscous_work", c.viscous_work, where);
-  }
-  {
-    Handle g = hdf5::create_group(file, "walls", where);
-    put_attr<std::uint64_t>(g.get(), "count", s.walls.size(), where);
-    for (std::size_t w = 0; w < s.walls.size(); ++w)
-      {
-        Handle one = hdf5::create_group(g.get(), numbered("wall", w), where);
-        put_wall(one.get(), s.walls[w], where);
-      }
-  }
-  {
-    Handle g = hdf5::create_group(file, "wall_contacts", where);
-    put_attr<std::uint64_t>(g.get(), "count", s.wall_contacts.size(), where);
-    for (std::size_t w = 0; w < s.wall_contacts.size(); ++w)
-      {
-        const WallContacts &c = s.wall_contacts[w];
-        Handle one = hdf5::create_group(g.get(), numbered("wall", w), where);
-        put(one.get(), "disc", c.disc, where);
-        put_states(one.get(), c.state, where);
-        put(one.get(), "force_x", c.force_x, where);
-        put(one.get(), "force_y", c.force_y, where);
-        put(one.get(), "elastic_normal_force", c.elastic_normal_force, where);
-        put(one.get(), "friction_work", c.friction_work, where);
-        put(one.get(), "viscous_work", c.viscous_work, where);
-      }
-  }
-  {
-    Handle g = hdf5::create_group(file, "verlet", where);
-    put(g.get(), "disc_x_at_rebuild", s.disc_x_at_rebuild, where);
-    put(g.get(), "disc_y_at_rebuild", s.disc_y_at_rebuild, where);
-    put(g.get(), "wall_start_at_rebuild", s.wall_start_at_rebuild, where);
-  }
-  put(file, "wall_force_previous", s.wall_force_previous, where);
-  {
-    Handle g = hdf5::create_group(file, "damping", where);
-    put(g.get(), "fx", s.damping_fx, where);
-    put(g.get(), "fy", s.damping_fy, where);
-    put(g.get(), "torque", s.damping_torque, where);
-  }
-  {
-    Handle g = hdf5::create_group(file, "sheets", where);
-    put_attr<std::uint64_t>(g.get(), "count", s.sheets.size(), where);
-    for (std::size_t k = 0; k < s.sheets.size(); ++k)
-      {
-        Handle one = hdf5::create_group(g.get(), numbered("sheet", k), where);
-        put_sheet(one.get(), s.sheets[k], s.sheet_contacts[k], where);
-      }
-  }
-}
 
 /// Flushes a file (or directory) to the disk. A directory that cannot be opened is skipped
 /// (`required` false): some file systems do not allow it.
@@ -380,141 +47,6 @@ void sync_to_disk(const std::filesystem::path &path, bool required, const std::s
   ::close(fd);
   if (status != 0 && required)
     fail(where, "flushing '" + path.string() + "' to the disk failed: " + std::strerror(error));
-}
-
-// ---- reading ----------------------------------------------------------------------------------------
-
-template <typename T>
-T get_attr(hid_t parent, const char *name, const std::string &where)
-{
-  T value{};
-  hdf5::read_attribute(parent, name, Type<T>::memory(), &value, where);
-  return value;
-}
-
-/// Reads a dataset of any number of rows and `columns` columns (one dimension if columns == 1)
-/// whose stored type is of the class and size of T.
-template <typename T>
-SoaVector<T> get(hid_t parent, const char *name, const std::string &where, std::size_t columns = 1)
-{
-  const std::string what = std::string("dataset '") + name + "'";
-  Handle set(H5Dopen2(parent, name, H5P_DEFAULT), H5Dclose, where, "opening " + what);
-  Handle type(H5Dget_type(set.get()), H5Tclose, where, "reading the type of " + what);
-  if (H5Tget_class(type.get()) != Type<T>::type_class || H5Tget_size(type.get()) != sizeof(T))
-    fail(where, what + " has an unexpected type");
-  const std::vector<hsize_t> dims = hdf5::dataset_shape(set.get(), where, what);
-  if (dims.size() != (columns > 1 ? 2u : 1u) || (columns > 1 && dims[1] != columns))
-    fail(where, what + " has an unexpected shape");
-  SoaVector<T> values(static_cast<std::size_t>(dims[0]) * columns);
-  if (!values.empty())
-    check(H5Dread(set.get(), Type<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), where,
-          "reading " + what);
-  return values;
-}
-
-std::vector<Vec2> get_vec2s(hid_t parent, const char *name, const std::string &where)
-{
-  const auto flat = get<double>(parent, name, where, 2);
-  std::vector<Vec2> values(flat.size() / 2);
-  for (std::size_t k = 0; k < values.size(); ++k)
-    values[k] = Vec2(flat[2 * k], flat[2 * k + 1]);
-  return values;
-}
-
-Vec2 get_vec2(hid_t parent, const char *name, const std::string &where)
-{
-  const auto v = get<double>(parent, name, where);
-  if (v.size() != 2)
-    fail(where, std::string("dataset '") + name + "' does not hold 2 values");
-  return Vec2(v[0], v[1]);
-}
-
-bool get_bool(hid_t parent, const char *name, const std::string &where)
-{
-  const std::uint8_t b = get_attr<std::uint8_t>(parent, name, where);
-  if (b > 1)
-    fail(where, std::string("attribute '") + name + "' is not 0 or 1");
-  return b == 1;
-}
-
-SoaVector<ContactState> get_states(hid_t parent, const std::string &where)
-{
-  const auto tangential_force = get<double>(parent, "tangential_force", where);
-  const auto bonded = get<std::uint8_t>(parent, "bonded", where);
-  const auto touching = get<std::uint8_t>(parent, "touching", where);
-  const auto dashpot_force = get<double>(parent, "dashpot_force", where);
-  if (bonded.size() != tangential_force.size() || touching.size() != tangential_force.size() ||
-      dashpot_force.size() != tangential_force.size())
-    fail(where, "contact states of different lengths");
-  SoaVector<ContactState> states(tangential_force.size());
-  for (std::size_t q = 0; q < states.size(); ++q)
-    {
-      if (bonded[q] > 1 || touching[q] > 1)
-        fail(where, "a contact state flag is not 0 or 1");
-      states[q].tangential_force = tangential_force[q];
-      states[q].bonded = bonded[q] == 1;
-      states[q].touching = touching[q] == 1;
-      states[q].dashpot_force = dashpot_force[q];
-    }
-  return states;
-}
-
-ContactParameters get_law(hid_t parent, const char *name, const std::string &where)
-{
-  ContactParameters c;
-  Handle law = hdf5::open_group(parent, name, where);
-  c.normal_stiffness = get_attr<double>(law.get(), "normal_stiffness", where);
-  c.shear_stiffness = get_attr<double>(law.get(), "shear_stiffness", where);
-  c.friction_angle_deg = get_attr<double>(law.get(), "friction_angle_deg", where);
-  c.shear_strength = get_attr<double>(law.get(), "shear_strength", where);
-  c.tensile_strength = get_attr<double>(law.get(), "tensile_strength", where);
-  c.restitution = get_attr<double>(law.get(), "restitution", where);
-  c.bond_new_contacts = get_bool(law.get(), "bond_new_contacts", where);
-  return c;
-}
-
-Wall get_wall(hid_t group, const std::string &where)
-{
-  const ContactParameters c = get_law(group, "law", where);
-  const std::string name = hdf5::read_string_attribute(group, "name", where);
-  LinearContactLaw law;
-  try
-    {
-      law = LinearContactLaw(c);
-    }
-  catch (const std::invalid_argument &e)
-    {
-      fail(where, "wall '" + name + "': " + e.what());
-    }
-  Wall wall(name, get_vec2(group, "start", where), get_vec2(group, "end", where), law);
-  const std::string control = hdf5::read_string_attribute(group, "control", where);
-  if (control == control_name(WallControl::servo_stress))
-    wall.control = WallControl::servo_stress;
-  else if (control == control_name(WallControl::prescribed_velocity))
-    wall.control = WallControl::prescribed_velocity;
-  else
-    fail(where, "wall '" + name + "' has an unknown control '" + control + "'");
-  wall.velocity = get_vec2(group, "velocity", where);
-  wall.servo.target_stress = get_attr<double>(group, "servo_target_stress", where);
-  wall.servo.relaxation = get_attr<double>(group, "servo_relaxation", where);
-  wall.servo.max_speed = get_attr<double>(group, "servo_max_speed", where);
-  wall.servo.integral_gain = get_attr<double>(group, "servo_integral_gain", where);
-  wall.servo.integral = get_attr<double>(group, "servo_integral", where);
-  wall.force_from_particles = get_vec2(group, "force_from_particles", where);
-  wall.n_contacts = static_cast<std::size_t>(get_attr<std::uint64_t>(group, "n_contacts", where));
-  wall.loaded_length = get_attr<double>(group, "loaded_length", where);
-  // Checkpoints written before the attribute existed: every wall touched sheets.
-  wall.touches_sheets =
-    H5Aexists(group, "touches_sheets") <= 0 || get_attr<std::uint64_t>(group, "touches_sheets", where) != 0;
-  return wall;
-}
-
-std::size_t get_count(hid_t group, const std::string &where)
-{
-  const std::uint64_t count = get_attr<std::uint64_t>(group, "count", where);
-  if (count > 1000000)
-    fail(where, "implausible count " + std::to_string(count));
-  return static_cast<std::size_t>(count);
 }
 
 /// Lengths and indices that the step loop relies on; a damaged or foreign file fails here rather
@@ -603,293 +135,6 @@ void check_consistency(const DemSystemState &s, const std::string &where)
     }
 }
 
-SparSheet get_sheet(hid_t group, SheetContacts &c, const std::string &where)
-{
-  const std::string name = hdf5::read_string_attribute(group, "name", where);
-  SheetParameters parameters;
-  parameters.axial_stiffness = get_attr<double>(group, "axial_stiffness", where);
-  parameters.thickness = get_attr<double>(group, "thickness", where);
-  parameters.areal_mass = get_attr<double>(group, "areal_mass", where);
-  parameters.mass_scaling = get_attr<double>(group, "mass_scaling", where);
-  parameters.interface = get_law(group, "interface", where);
-  const SoaVector<double> rest_length = get<double>(group, "rest_length", where);
-  // A chain of the right size, built to validate the parameters; every array is then replaced
-  // by the stored one.
-  std::vector<Vec2> nodes(rest_length.size() + 1);
-  for (std::size_t k = 0; k < nodes.size(); ++k)
-    nodes[k] = Vec2(static_cast<double>(k), 0.0);
-  std::optional<SparSheet> sheet;
-  try
-    {
-      sheet.emplace(name, nodes, parameters);
-    }
-  catch (const std::invalid_argument &e)
-    {
-      fail(where, e.what());
-    }
-  SparSheet &out = *sheet;
-  out.rest_length = rest_length;
-  out.x = get<double>(group, "x", where);
-  out.y = get<double>(group, "y", where);
-  out.vx = get<double>(group, "vx", where);
-  out.vy = get<double>(group, "vy", where);
-  out.fx = get<double>(group, "fx", where);
-  out.fy = get<double>(group, "fy", where);
-  out.mass = get<double>(group, "mass", where);
-  out.inverse_mass = get<double>(group, "inverse_mass", where);
-  out.gravitational_mass = get<double>(group, "gravitational_mass", where);
-  out.damping_fx = get<double>(group, "damping_fx", where);
-  out.damping_fy = get<double>(group, "damping_fy", where);
-  out.reaction_x = get<double>(group, "reaction_x", where);
-  out.reaction_y = get<double>(group, "reaction_y", where);
-  out.load_x = get<double>(group, "load_x", where);
-  out.load_y = get<double>(group, "load_y", where);
-  out.tension = get<double>(group, "tension", where);
-  {
-    Handle g = hdf5::open_group(group, "contacts", where);
-    c.disc = get<std::uint32_t>(g.get(), "disc", where);
-    c.segment = get<std::uint32_t>(g.get(), "segment", where);
-    c.state = get_states(g.get(), where);
-    c.position = get<double>(g.get(), "position", where);
-    c.overlap = get<double>(g.get(), "overlap", where);
-    c.counted = get<std::uint8_t>(g.get(), "counted", where);
-    c.force_x = get<double>(g.get(), "force_x", where);
-    c.force_y = get<double>(g.get(), "force_y", where);
-    c.elastic_normal_force = get<double>(g.get(), "elastic_normal_force", where);
-    c.friction_work = get<double>(g.get(), "friction_work", where);
-    c.viscous_work = get<double>(g.get(), "viscous_work", where);
-    c.node_x_at_rebuild = get<double>(g.get(), "node_x_at_rebuild", where);
-    c.node_y_at_rebuild = get<double>(g.get(), "node_y_at_rebuild", where);
-  }
-  {
-    Handle g = hdf5::open_group(group, "wall_contacts", where);
-    const std::size_t count = get_count(g.get(), where);
-    c.walls.resize(count);
-    for (std::size_t w = 0; w < count; ++w)
-      {
-        SheetWallContacts &wc = c.walls[w];
-        Handle one = hdf5::open_group(g.get(), numbered("wall", w), where);
-        wc.node = get<std::uint32_t>(one.get(), "node", where);
-        wc.state = get_states(one.get(), where);
-        wc.force_x = get<double>(one.get(), "force_x", where);
-        wc.force_y = get<double>(one.get(), "force_y", where);
-        wc.elastic_normal_force = get<double>(one.get(), "elastic_normal_force", where);
-        wc.friction_work = get<double>(one.get(), "friction_work", where);
-        wc.viscous_work = get<double>(one.get(), "viscous_work", where);
-      }
-  }
-  return out;
-}
-
-DemSystemState get_everything(hid_t file, std::uint32_t version, const std::string &where)
-{
-  DemSystemState s;
-  s.time = get_attr<double>(file, "time", where);
-  s.time_step = get_attr<double>(file, "time_step", where);
-  s.skin = get_attr<double>(file, "skin", where);
-  s.radius_growth_since_rebuild = get_attr<double>(file, "radius_growth_since_rebuild", where);
-  s.particle_contact = get_law(file, "particle_law", where);
-  s.step_count = get_attr<std::uint64_t>(file, "step_count", where);
-  s.n_rebuilds = get_attr<std::uint64_t>(file, "n_rebuilds", where);
-  s.n_broken_bonds = get_attr<std::uint64_t>(file, "n_broken_bonds", where);
-  s.rebuild_needed = get_bool(file, "rebuild_needed", where);
-  {
-    Handle g = hdf5::open_group(file, "energy", where);
-    EnergyBudget &e = s.accumulated;
-    e.kinetic = get_attr<double>(g.get(), "kinetic", where);
-    e.gravitational = get_attr<double>(g.get(), "gravitational", where);
-    e.elastic = get_attr<double>(g.get(), "elastic", where);
-    e.friction_dissipated = get_attr<double>(g.get(), "friction_dissipated", where);
-    e.viscous_dissipated = get_attr<double>(g.get(), "viscous_dissipated", where);
-    e.local_damping_dissipated = get_attr<double>(g.get(), "local_damping_dissipated", where);
-    e.boundary_work = get_attr<double>(g.get(), "boundary_work", where);
-    if (version >= 2)
-      {
-        e.sheet_kinetic = get_attr<double>(g.get(), "sheet_kinetic", where);
-        e.sheet_elastic = get_attr<double>(g.get(), "sheet_elastic", where);
-        e.interface_friction_dissipated = get_attr<double>(g.get(), "interface_friction_dissipated", where);
-      }
-  }
-  {
-    Handle g = hdf5::open_group(file, "particles", where);
-    ParticleSet &p = s.particles;
-    p.body_id = get<std::int64_t>(g.get(), "body_id", where);
-    p.x = get<double>(g.get(), "x", where);
-    p.y = get<double>(g.get(), "y", where);
-    p.rotation = get<double>(g.get(), "rotation", where);
-    p.vx = get<double>(g.get(), "vx", where);
-    p.vy = get<double>(g.get(), "vy", where);
-    p.omega = get<double>(g.get(), "omega", where);
-    p.fx = get<double>(g.get(), "fx", where);
-    p.fy = get<double>(g.get(), "fy", where);
-    p.torque = get<double>(g.get(), "torque", where);
-    p.mass = get<double>(g.get(), "mass", where);
-    p.inertia = get<double>(g.get(), "inertia", where);
-    p.inverse_mass = get<double>(g.get(), "inverse_mass", where);
-    p.inverse_inertia = get<double>(g.get(), "inverse_inertia", where);
-    p.first_disc = get<std::uint32_t>(g.get(), "first_disc", where);
-    p.n_discs = get<std::uint32_t>(g.get(), "n_discs", where);
-    p.disc_body = get<std::uint32_t>(g.get(), "disc_body", where);
-    p.disc_radius = get<double>(g.get(), "disc_radius", where);
-    p.disc_offset_x = get<double>(g.get(), "disc_offset_x", where);
-    p.disc_offset_y = get<double>(g.get(), "disc_offset_y", where);
-    p.disc_x = get<double>(g.get(), "disc_x", where);
-    p.disc_y = get<double>(g.get(), "disc_y", where);
-  }
-  {
-    Handle g = hdf5::open_group(file, "pairs", where);
-    PairContacts &c = s.pairs;
-    c.disc_i = get<std::uint32_t>(g.get(), "disc_i", where);
-    c.disc_j = get<std::uint32_t>(g.get(), "disc_j", where);
-    c.state = get_states(g.get(), where);
-    c.force_x = get<double>(g.get(), "force_x", where);
-    c.force_y = get<double>(g.get(), "force_y", where);
-    c.torque_i = get<double>(g.get(), "torque_i", where);
-    c.torque_j = get<double>(g.get(), "torque_j", where);
-    c.elastic_normal_force = get<double>(g.get(), "elastic_normal_force", where);
-    c.friction_work = get<double>(g.get(), "friction_work", where);
-    c.viscous_work = get<double>(g.get(), "viscous_work", where);
-  }
-  {
-    Handle g = hdf5::open_group(file, "walls", where);
-    const std::size_t count = get_count(g.get(), where);
-    for (std::size_t w = 0; w < count; ++w)
-      {
-        Handle one = hdf5::open_group(g.get(), numbered("wall", w), where);
-        s.walls.push_back(get_wall(one.get(), where));
-      }
-  }
-  {
-    Handle g = hdf5::open_group(file, "wall_contacts", where);
-    const std::size_t count = get_count(g.get(), where);
-    s.wall_contacts.resize(count);
-    for (std::size_t w = 0; w < count; ++w)
-      {
-        WallContacts &c = s.wall_contacts[w];
-        Handle one = hdf5::open_group(g.get(), numbered("wall", w), where);
-        c.disc = get<std::uint32_t>(one.get(), "disc", where);
-        c.state = get_states(one.get(), where);
-        c.force_x = get<double>(one.get(), "force_x", where);
-        c.force_y = get<double>(one.get(), "force_y", where);
-        c.elastic_normal_force = get<double>(one.get(), "elastic_normal_force", where);
-        c.friction_work = get<double>(one.get(), "friction_work", where);
-        c.viscous_work = get<double>(one.get(), "viscous_work", where);
-      }
-  }
-  {
-    Handle g = hdf5::open_group(file, "verlet", where);
-    s.disc_x_at_rebuild = get<double>(g.get(), "disc_x_at_rebuild", where);
-    s.disc_y_at_rebuild = get<double>(g.get(), "disc_y_at_rebuild", where);
-    s.wall_start_at_rebuild = get_vec2s(g.get(), "wall_start_at_rebuild", where);
-  }
-  s.wall_force_previous = get_vec2s(file, "wall_force_previous", where);
-  {
-    Handle g = hdf5::open_group(file, "damping", where);
-    s.damping_fx = get<double>(g.get(), "fx", where);
-    s.damping_fy = get<double>(g.get(), "fy", where);
-    s.damping_torque = get<double>(g.get(), "torque", where);
-  }
-  if (version >= 2) // version 1 had no sheets
-    {
-      Handle g = hdf5::open_group(file, "sheets", where);
-      const std::size_t count = get_count(g.get(), where);
-      s.sheet_contacts.resize(count);
-      for (std::size_t k = 0; k < count; ++k)
-        {
-          Handle one = hdf5::open_group(g.get(), numbered("sheet", k), where);
-          s.sheets.push_back(get_sheet(one.get(), s.sheet_contacts[k], where));
-        }
-    }
-  check_consistency(s, where);
-  return s;
-}
-
-std::string joined_keys(const std::vector<std::string> &keys)
-{
-  std::string text;
-  for (const std::string &k : keys)
-    text += k + "\n";
-  return text;
-}
-
-std::vector<std::string> split_keys(const std::string &text)
-{
-  std::vector<std::string> keys;
-  std::size_t start = 0;
-  for (std::size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1)
-    keys.push_back(text.substr(start, end - start));
-  return keys;
-}
-
-void put_command(hid_t file, const CommandState &c, const std::string &where)
-{
-  Handle g = hdf5::create_group(file, "command", where);
-  hdf5::write_string_attribute(g.get(), "name", c.name, where);
-  std::vector<std::string> real_keys, count_keys;
-  {
-    Handle reals = hdf5::create_group(g.get(), "reals", where);
-    for (const auto &[key, values] : c.reals)
-      {
-        put(reals.get(), key.c_str(), values, where);
-        real_keys.push_back(key);
-      }
-  }
-  {
-    Handle counts = hdf5::create_group(g.get(), "counts", where);
-    for (const auto &[key, values] : c.counts)
-      {
-        put(counts.get(), key.c_str(), values, where);
-        count_keys.push_back(key);
-      }
-  }
-  hdf5::write_string_attribute(g.get(), "real_keys", joined_keys(real_keys), where);
-  hdf5::write_string_attribute(g.get(), "count_keys", joined_keys(count_keys), where);
-  if (c.texts.empty())
-    return; // the layout of the files written before texts existed
-  std::vector<std::string> text_keys;
-  {
-    Handle texts = hdf5::create_group(g.get(), "texts", where);
-    for (const auto &[key, text] : c.texts)
-      {
-        hdf5::write_string_attribute(texts.get(), key.c_str(), text, where);
-        text_keys.push_back(key);
-      }
-  }
-  hdf5::write_string_attribute(g.get(), "text_keys", joined_keys(text_keys), where);
-}
-
-CommandState get_command(hid_t file, const std::string &where)
-{
-  CommandState c;
-  if (H5Lexists(file, "command", H5P_DEFAULT) <= 0)
-    return c;
-  Handle g = hdf5::open_group(file, "command", where);
-  c.name = hdf5::read_string_attribute(g.get(), "name", where);
-  {
-    Handle reals = hdf5::open_group(g.get(), "reals", where);
-    for (const std::string &key : split_keys(hdf5::read_string_attribute(g.get(), "real_keys", where)))
-      {
-        const SoaVector<double> v = get<double>(reals.get(), key.c_str(), where);
-        c.reals[key].assign(v.begin(), v.end());
-      }
-  }
-  {
-    Handle counts = hdf5::open_group(g.get(), "counts", where);
-    for (const std::string &key : split_keys(hdf5::read_string_attribute(g.get(), "count_keys", where)))
-      {
-        const SoaVector<std::uint64_t> v = get<std::uint64_t>(counts.get(), key.c_str(), where);
-        c.counts[key].assign(v.begin(), v.end());
-      }
-  }
-  if (H5Aexists(g.get(), "text_keys") > 0)
-    {
-      Handle texts = hdf5::open_group(g.get(), "texts", where);
-      for (const std::string &key : split_keys(hdf5::read_string_attribute(g.get(), "text_keys", where)))
-        c.texts[key] = hdf5::read_string_attribute(texts.get(), key.c_str(), where);
-    }
-  return c;
-}
-
 void write_checkpoint_file(const DemSystemState &state, const CommandState *command, const std::filesystem::path &file)
 {
   const std::string where = describe(file);
@@ -900,9 +145,12 @@ void write_checkpoint_file(const DemSystemState &state, const CommandState *comm
       {
         hdf5::SilenceErrors silence;
         hdf5::WritableFile h5 = hdf5::WritableFile::create(temporary, where);
-        put_everything(h5.get(), state, where);
+        Writer root(h5.get(), where);
+        root.text("format", format_name);
+        root.attribute("format_version", checkpoint_format_version);
+        checkpoint_fields::visit_fields(state, root);
         if (command)
-          put_command(h5.get(), *command, where);
+          root.group("command", [&](Writer &in) { checkpoint_fields::visit_fields(*command, in); });
         h5.close();
       }
       sync_to_disk(temporary, true, where);
@@ -942,14 +190,24 @@ void read_checkpoint_file(const std::filesystem::path &file, DemSystemState *sta
   if (H5Aexists(h5.get(), "format") <= 0 || H5Aexists(h5.get(), "format_version") <= 0 ||
       hdf5::read_string_attribute(h5.get(), "format", where) != format_name)
     fail(where, "is not a geohybrid DEM checkpoint");
-  const std::uint32_t version = get_attr<std::uint32_t>(h5.get(), "format_version", where);
+  std::uint32_t version = 0;
+  hdf5::read_attribute(h5.get(), "format_version", H5T_NATIVE_UINT32, &version, where);
   if (version < 1 || version > checkpoint_format_version)
     fail(where, "has checkpoint format version " + std::to_string(version) + "; this program reads versions 1 to " +
                   std::to_string(checkpoint_format_version));
+  Reader root(h5.get(), version, where);
   if (state)
-    *state = get_everything(h5.get(), version, where);
+    {
+      *state = DemSystemState{};
+      checkpoint_fields::visit_fields(*state, root);
+      check_consistency(*state, where);
+    }
   if (command)
-    *command = get_command(h5.get(), where);
+    {
+      *command = CommandState{};
+      if (H5Lexists(h5.get(), "command", H5P_DEFAULT) > 0)
+        root.group("command", [&](Reader &in) { checkpoint_fields::visit_fields(*command, in); });
+    }
   h5.close(where, "closing the file");
 }
 } // namespace

@@ -5,6 +5,10 @@
 // then calls DemSystem::restore_state(read_checkpoint(file)). Walls are stored whole (geometry,
 // contact law, control), so the saved walls replace those the system was built with.
 //
+// Each stored state is described once, as a list of its fields with their names in the file
+// (checkpoint_fields.h), which the writer (checkpoint_writer.h) and the reader
+// (checkpoint_reader.h) both walk; this file's functions handle the files themselves.
+//
 // HDF5 layout, format version 2 (doubles as IEEE 754 binary64, so values round-trip exactly;
 // booleans as uint8; "n x 2" datasets hold (x, y) rows). Version 1 files (no sheets, no sheet
 // energy terms) are still read, as a state without sheets:
