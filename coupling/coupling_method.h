@@ -79,7 +79,7 @@ struct MethodNames;
 template <typename... Method>
 struct MethodNames<std::variant<Method...>>
 {
-  static constexpr std::array<std::string_view, sizeof...(Method)> value{Method::name...};
+  static constexpr std::array<std::string_view, sizeof...(Method)> value{{Method::name...}};
 };
 } // namespace detail
 
