@@ -44,26 +44,13 @@ namespace bench = coupling::benchmarks;
 
 namespace
 {
-/// The methods the input may choose, by name: a new method is one more row here (and one more
-/// alternative of coupling::CouplingMethod, and its scenarios in run_benchmarks), its own
-/// parameters read by `make` from the file (`lattice`: the particles' parameters, already read).
-struct MethodChoice
-{
-  const char *name;
-  std::function<CouplingMethod(ParameterHandler &, const std::string &where, const bench::PatchGeometry &lattice)> make;
-};
-
-constexpr std::size_t n_methods = 3;
-static_assert(std::variant_size_v<CouplingMethod> == n_methods,
-              "every alternative of coupling::CouplingMethod needs its row in method_choices()");
-
-/// Rethrows what `make` throws as std::invalid_argument naming the input and the subsection.
-template <typename Make>
-CouplingMethod checked(const std::string &where, const char *subsection, Make make)
+/// Rethrows what `check` throws as std::invalid_argument naming the input and the subsection.
+template <typename Check>
+void checked(const std::string &where, const char *subsection, Check check)
 {
   try
     {
-      return make();
+      check();
     }
   catch (const std::invalid_argument &e)
     {
@@ -71,49 +58,49 @@ CouplingMethod checked(const std::string &where, const char *subsection, Make ma
     }
 }
 
-const std::array<MethodChoice, n_methods> &method_choices()
+template <typename... Reader>
+struct Readers : Reader...
 {
-  static const std::array<MethodChoice, n_methods> choices{{
-    {"Lagrange multipliers",
-     [](ParameterHandler &, const std::string &, const bench::PatchGeometry &) {
-       return CouplingMethod(coupling::LagrangeMultiplierCoupling{});
-     }},
-    {"penalty",
-     [](ParameterHandler &prm, const std::string &where, const bench::PatchGeometry &) {
-       prm.enter_subsection("Penalty");
-       const coupling::PenaltyCoupling penalty{prm.get_double("factor")};
-       prm.leave_subsection();
-       return checked(where, "Penalty", [&] {
-         penalty.validate();
-         return CouplingMethod(penalty);
-       });
-     }},
-    // The interface springs relative to the matched ones (apps/coupling_benchmarks/standing_lattice.h), which
-    // depend on the lattice: kn = (lambda + 2 mu) d / r, ks = mu d / r.
-    {"non-overlapping interface",
-     [](ParameterHandler &prm, const std::string &where, const bench::PatchGeometry &lattice) {
-       prm.enter_subsection("Interface");
-       const double normal_factor = prm.get_double("normal stiffness factor");
-       const double shear_factor = prm.get_double("shear stiffness factor");
-       const double friction_angle = prm.get_double("friction angle");
-       prm.leave_subsection();
-       return checked(where, "Interface", [&] {
-         const coupling::InterfaceCoupling interface =
-           bench::matched_interface(lattice, normal_factor, shear_factor, friction_angle);
-         interface.validate();
-         return CouplingMethod(interface);
-       });
-     }},
-  }};
-  return choices;
+  using Reader::operator()...;
+};
+template <typename... Reader>
+Readers(Reader...) -> Readers<Reader...>;
+
+/// The method 'method' names (coupling/coupling_method.h: its names, and the old spellings as
+/// aliases), with its own parameters read from its subsection (`lattice`: the particles',
+/// already read). A method without its reader here does not compile.
+CouplingMethod read_method(ParameterHandler &prm, const std::string &where, const bench::PatchGeometry &lattice)
+{
+  CouplingMethod method = coupling::parse_coupling_method_name(prm.get("method"), where, "method");
+  std::visit(Readers{[](coupling::LagrangeMultiplierCoupling &) {},
+                     [&](coupling::PenaltyCoupling &penalty) {
+                       prm.enter_subsection("Penalty");
+                       penalty.penalty_factor = prm.get_double("factor");
+                       prm.leave_subsection();
+                       checked(where, "Penalty", [&] { penalty.validate(); });
+                     },
+                     // The interface springs relative to the matched ones
+                     // (apps/coupling_benchmarks/standing_lattice.h), which depend on the
+                     // lattice: kn = (lambda + 2 mu) d / r, ks = mu d / r.
+                     [&](coupling::InterfaceCoupling &interface) {
+                       prm.enter_subsection("Interface");
+                       const double normal_factor = prm.get_double("normal stiffness factor");
+                       const double shear_factor = prm.get_double("shear stiffness factor");
+                       const double friction_angle = prm.get_double("friction angle");
+                       prm.leave_subsection();
+                       checked(where, "Interface", [&] {
+                         interface = bench::matched_interface(lattice, normal_factor, shear_factor, friction_angle);
+                         interface.validate();
+                       });
+                     }},
+             method);
+  return method;
 }
 
-std::string method_selection()
+/// `method = name` in the input's words, for the entries' documentation.
+std::string method_is(std::string_view name)
 {
-  std::string names;
-  for (const MethodChoice &choice : method_choices())
-    names += (names.empty() ? "" : "|") + std::string(choice.name);
-  return names;
+  return "method = " + std::string(name);
 }
 } // namespace
 
@@ -124,12 +111,18 @@ void declare_coupling_test_parameters(ParameterHandler &prm)
   const auto text = [](double v) { return number(v); };
   prm.declare_entry("output directory", "output/coupling_test", Patterns::Anything(),
                     "Directory for all results, created if needed, relative to the working directory [-]");
-  prm.declare_entry("method", "Lagrange multipliers", Patterns::Selection(method_selection()),
-                    "How the particles are coupled to the continuum: Lagrange multipliers (the bridging domain of "
-                    "Xiao & Belytschko 2004 in an overlap band: velocities equal, exactly), penalty (springs between "
-                    "the displacements in the band, subsection Penalty) or non-overlapping interface (no band: the "
-                    "continuum's boundary edges are deformable walls the discs touch, subsection Interface; its "
-                    "benchmarks are a lattice standing on the continuum, coupling/README.md) [-]");
+  using coupling::InterfaceCoupling, coupling::LagrangeMultiplierCoupling, coupling::PenaltyCoupling;
+  prm.declare_entry("method", std::string(LagrangeMultiplierCoupling::name),
+                    Patterns::Selection(coupling::coupling_method_selection(true)),
+                    "How the particles are coupled to the continuum: " + std::string(LagrangeMultiplierCoupling::name) +
+                      " (Lagrange multipliers: the bridging domain of Xiao & Belytschko 2004 in an overlap band: "
+                      "velocities equal, exactly), " + std::string(PenaltyCoupling::name) +
+                      " (springs between the displacements in the band, subsection Penalty) or " +
+                      std::string(InterfaceCoupling::name) +
+                      " (the non-overlapping interface, no band: the continuum's boundary edges are deformable walls "
+                      "the discs touch, subsection Interface; its benchmarks are a lattice standing on the continuum, "
+                      "docs/coupling.md); the names of 'Hybrid/coupling method' of geohybrid pullout. 'Lagrange "
+                      "multipliers' and 'non-overlapping interface' are still accepted [-]");
 
   prm.enter_subsection("Particles");
   prm.declare_entry("normal stiffness", text(g.kn), Patterns::Double(1.0, 1e14),
@@ -155,19 +148,19 @@ void declare_coupling_test_parameters(ParameterHandler &prm)
 
   prm.enter_subsection("Penalty");
   prm.declare_entry("factor", "1", Patterns::Double(1e-3, 1e3),
-                    "method = penalty: spring stiffness k_p per particle over E d / w (E the continuum's Young "
+                    method_is(PenaltyCoupling::name) + ": spring stiffness k_p per particle over E d / w (E the continuum's Young "
                     "modulus, d the spacing, w the band width); stiffer lowers the time step [-]");
   prm.leave_subsection();
 
   prm.enter_subsection("Interface");
   prm.declare_entry("normal stiffness factor", "1", Patterns::Double(1e-3, 1e3),
-                    "method = non-overlapping interface: the disc-edge normal stiffness over the matched (lambda + "
+                    method_is(InterfaceCoupling::name) + ": the disc-edge normal stiffness over the matched (lambda + "
                     "2 mu) d / r (lambda, mu the lattice's moduli, d the spacing, r the radius), which carries sigma_yy "
                     "d exactly under a uniaxial strain; the particles' own kn is 1/3 of it for kn = 2 ks [-]");
   prm.declare_entry("shear stiffness factor", "1", Patterns::Double(1e-3, 1e3),
-                    "method = non-overlapping interface: the disc-edge tangential stiffness over the matched mu d / r [-]");
+                    method_is(InterfaceCoupling::name) + ": the disc-edge tangential stiffness over the matched mu d / r [-]");
   prm.declare_entry("friction angle", "30", Patterns::Double(0.0, 89.0),
-                    "method = non-overlapping interface: the disc-edge Coulomb friction angle (the interface is "
+                    method_is(InterfaceCoupling::name) + ": the disc-edge Coulomb friction angle (the interface is "
                     "frictional and carries no tension) [deg]");
   prm.leave_subsection();
 
@@ -177,7 +170,7 @@ void declare_coupling_test_parameters(ParameterHandler &prm)
                     "continuum linear) [-]");
   prm.declare_entry("strain yy", "-0.4e-7", Patterns::Double(-1e-3, 1e-3), "Uniform strain eps_yy [-]");
   prm.declare_entry("strain xy", "0.3e-7", Patterns::Double(-1e-3, 1e-3),
-                    "Uniform (tensorial) shear strain eps_xy; left out by method = non-overlapping interface (a "
+                    "Uniform (tensorial) shear strain eps_xy; left out by " + method_is(InterfaceCoupling::name) + " (a "
                     "disc-edge contact formed at the strained state starts with an unloaded tangential spring), "
                     "whose applied strain the summary states [-]");
   prm.declare_entry("strain size along the rows", "1e-3", Patterns::Double(1e-6, 1e-2),
@@ -221,13 +214,8 @@ CouplingTestInput parse_coupling_test(ParameterHandler &prm, const std::string &
   g.density = prm.get_double("density");
   prm.leave_subsection();
 
-  in.method_name = prm.get("method");
-  const auto &choices = method_choices();
-  const auto choice = std::find_if(choices.begin(), choices.end(),
-                                   [&](const MethodChoice &c) { return in.method_name == c.name; });
-  if (choice == choices.end()) // the Selection pattern lists exactly the table's names
-    throw std::logic_error(where + ": 'method' = '" + in.method_name + "' passed the pattern but has no row");
-  in.method = choice->make(prm, where, g);
+  in.method = read_method(prm, where, g);
+  in.method_name = coupling::name_of(in.method);
 
   // The patch: 12 rows, the band 5.3 spacings in (an untied particle region of five columns), the
   // continuum four spacings past the band, cells of about `cell size` both ways.
@@ -258,12 +246,12 @@ CouplingTestInput parse_coupling_test(ParameterHandler &prm, const std::string &
   // Poisson coupling the interface lacks: the ghost force lambda eps_xx / |sigma|) for a strain
   // that hides it.
   in.patch_strain = in.strain;
-  if (std::holds_alternative<coupling::InterfaceCoupling>(in.method))
+  if (!coupling::has_band(in.method))
     {
       in.patch_strain.xy = 0.0;
       if (in.strain.xx == 0.0 && in.strain.yy == 0.0)
-        throw std::invalid_argument(where + ": 'Patch test/strain xx' and 'strain yy' are both 0: method = "
-                                    "non-overlapping interface leaves out 'strain xy', so its patch test has no strain");
+        throw std::invalid_argument(where + ": 'Patch test/strain xx' and 'strain yy' are both 0: " +
+                                    method_is(in.method_name) + " leaves out 'strain xy', so its patch test has no strain");
     }
 
   prm.enter_subsection("Wave");

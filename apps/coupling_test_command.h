@@ -20,7 +20,7 @@ void declare_coupling_test_parameters(dealii::ParameterHandler &prm);
 struct CouplingTestInput
 {
   std::string output_directory;
-  std::string method_name; ///< as the input spells it
+  std::string method_name; ///< coupling::name_of(method), whichever spelling the input used
   coupling::CouplingMethod method;
   coupling::benchmarks::PatchGeometry patch; ///< of the patch test and the energy run
   coupling::benchmarks::PlaneStrain strain;        ///< as the input gives it

@@ -39,6 +39,8 @@ void declare_hybrid_parameters(ParameterHandler &prm)
 {
   const coupling::HybridRegionSpec region;
   const coupling::PenaltyCoupling penalty;
+  const std::string multipliers(coupling::LagrangeMultiplierCoupling::name), penalty_name(coupling::PenaltyCoupling::name),
+    interface(coupling::InterfaceCoupling::name);
   prm.enter_subsection("Hybrid");
   // Any number passes the patterns: the library refuses the bad ones naming the entry and the
   // input file (a pattern error would name only deal.II's pattern).
@@ -69,13 +71,14 @@ void declare_hybrid_parameters(ParameterHandler &prm)
   prm.declare_entry("cell size", number(region.cell_size), Patterns::Double(),
                     "hybrid mode: the continuum's cells are at most this size (Q1, a generated mesh of the tank "
                     "less the DEM core; 'Continuum/cell size' is fem mode's); 0 = half the band width [m]");
-  prm.declare_entry("coupling method", "multipliers", Patterns::Selection("multipliers|penalty|interface"),
-                    "hybrid mode: how the particles meet the continuum: multipliers (bridging domain, Lagrange "
-                    "multipliers: the band's velocities equal the continuum's, exactly), penalty (springs of "
-                    "'penalty factor' x E x d / w), or interface (no band: the continuum's edges round the box are "
-                    "deformable walls the grains touch with their own contact law; not with 'DEM region length') [-]");
+  prm.declare_entry("coupling method", multipliers, Patterns::Selection(coupling::coupling_method_selection()),
+                    "hybrid mode: how the particles meet the continuum: " + multipliers +
+                      " (bridging domain, Lagrange multipliers: the band's velocities equal the continuum's, "
+                      "exactly), " + penalty_name + " (springs of 'penalty factor' x E x d / w), or " + interface +
+                      " (no band: the continuum's edges round the box are deformable walls the grains touch with "
+                      "their own contact law; not with 'DEM region length') [-]");
   prm.declare_entry("penalty factor", number(penalty.penalty_factor), Patterns::Double(),
-                    "hybrid mode, coupling method = penalty: k_p / (E d / w), E 'Continuum/Young modulus', d the "
+                    "hybrid mode, coupling method = " + penalty_name + ": k_p / (E d / w), E 'Continuum/Young modulus', d the "
                     "particle's diameter, w the band width; stiffer ties better and lowers the stable step [-]");
   prm.declare_entry("driven below weight", number(region.driven_below_weight), Patterns::Double(),
                     "hybrid mode: the band's particles whose energy weight (1 at the core's edge, 0 at the "
@@ -135,12 +138,9 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
   r.lift_thickness = lift_thickness(prm.get("lift thickness"), where);
   r.band_width = prm.get_double("band width");
   r.cell_size = prm.get_double("cell size");
-  if (prm.get("coupling method") == "penalty")
-    r.method = coupling::PenaltyCoupling{prm.get_double("penalty factor")};
-  else if (prm.get("coupling method") == "interface")
-    r.method = coupling::InterfaceCoupling{};
-  else
-    r.method = coupling::LagrangeMultiplierCoupling{};
+  r.method = coupling::parse_coupling_method_name(prm.get("coupling method"), where, "Hybrid/coupling method");
+  if (auto *penalty = std::get_if<coupling::PenaltyCoupling>(&r.method))
+    penalty->penalty_factor = prm.get_double("penalty factor");
   r.driven_below_weight = prm.get_double("driven below weight");
   r.scale_band_inertia = prm.get_bool("scale band inertia");
   r.fill_under_overburden = prm.get_bool("fill under overburden");
@@ -157,13 +157,6 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
   prm.leave_subsection();
   spec.validate(where);
   return spec;
-}
-
-std::string method_name(const coupling::CouplingMethod &method)
-{
-  if (std::holds_alternative<coupling::InterfaceCoupling>(method))
-    return "interface";
-  return std::holds_alternative<coupling::PenaltyCoupling>(method) ? "penalty" : "multipliers";
 }
 
 } // namespace
@@ -213,7 +206,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
             << number(box.x1, 4) << "] x [" << number(box.y0, 4) << ", " << number(box.y1, 4) << "] m in "
             << box.n_lifts << " lifts of " << number(box.lift_thickness, 4) << " m ("
             << in.tank.filling.n_particles << " for the whole tank), " << fem::to_string(spec.continuum.soil.kind)
-            << " continuum, coupling " << method_name(spec.region.method) << std::endl;
+            << " continuum, coupling " << coupling::name_of(spec.region.method) << std::endl;
 
   // 1. The box filled (or taken from its checkpoint), the continuum built and tied, both settled.
   double fill_time = 0.0;
@@ -395,7 +388,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   output->fill_summary(summary, "hybrid", anchorage_name(g), in.references);
   summary.set("n_particles", static_cast<double>(s.n_particles));
   summary.set("n_particles_full_tank", static_cast<double>(in.tank.filling.n_particles));
-  summary.set("coupling_method", method_name(spec.region.method));
+  summary.set("coupling_method", std::string(coupling::name_of(spec.region.method)));
   summary.set("n_cells", static_cast<double>(s.n_cells));
   summary.set("cell_size_m", s.cell_size);
   summary.set("band_width_m", s.band_width);

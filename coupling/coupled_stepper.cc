@@ -33,7 +33,7 @@ void check_sides(const fem::ExplicitSolver &continuum)
 const OverlapBand &checked(const fem::ExplicitSolver &continuum, const OverlapBand &band, const CouplingMethod &method)
 {
   check_sides(continuum);
-  if (std::holds_alternative<InterfaceCoupling>(method))
+  if (!has_band(method))
     throw std::invalid_argument("coupled stepper: the interface coupling (method 3) has no overlap band: "
                                 "construct the stepper without one");
   return band;
@@ -72,13 +72,24 @@ BandParticles weighted_band(dem::DemSystem &particles, fem::ExplicitSolver &cont
   return BandParticles(band, p, continuum.space(), continuum.displacement(), 2.0 * extent, driven_below_weight);
 }
 
-std::variant<LagrangeTie, PenaltyTie, InterfaceWall> make_tie(const CouplingMethod &method, const BandParticles &band,
-                                               const dem::DemSystem &particles, const fem::ExplicitSolver &continuum,
-                                               const OverlapBand &geometry)
+/// The tie of a band's method (checked() has refused method 3).
+CouplingTie band_tie(const CouplingMethod &method, const BandParticles &band, const dem::DemSystem &particles,
+                     const fem::ExplicitSolver &continuum, const OverlapBand &geometry)
 {
-  if (std::holds_alternative<PenaltyCoupling>(method))
-    return PenaltyTie(std::get<PenaltyCoupling>(method), band, particles.particles(), continuum, geometry.width());
-  return LagrangeTie(band, particles.particles(), continuum);
+  return std::visit(
+    [&](const auto &parameters) -> CouplingTie {
+      using Method = std::decay_t<decltype(parameters)>;
+      if constexpr (std::is_same_v<Method, PenaltyCoupling>)
+        return PenaltyTie(parameters, band, particles.particles(), continuum, geometry.width());
+      else if constexpr (std::is_same_v<Method, LagrangeMultiplierCoupling>)
+        return LagrangeTie(band, particles.particles(), continuum);
+      else
+        {
+          static_assert(!Method::has_band, "a band's method without its tie here");
+          throw std::logic_error("coupled stepper: method '" + std::string(Method::name) + "' has no band");
+        }
+    },
+    method);
 }
 } // namespace
 
@@ -88,7 +99,7 @@ CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &c
   , continuum_(continuum)
   , band_geometry_(checked(continuum, band, method))
   , band_(weighted_band(particles, continuum, band, treatment))
-  , tie_(make_tie(method, *band_, particles, continuum, band))
+  , tie_(band_tie(method, *band_, particles, continuum, band))
 {
   // The multipliers set the tied particles' translation (DemSystem::set_constrained_bodies):
   // it and the nodes they interpolate from are left out of the local and mass-proportional
@@ -131,14 +142,8 @@ void CoupledStepper::start()
   // the squared frequencies of the uncoupled sides and of the springs add at most).
   const double particles_omega = 2.0 / particles.critical_time_step();
   const double continuum_omega = 2.0 / continuum.critical_time_step();
-  const double springs = std::visit(
-    [&](const auto &tie) {
-      if constexpr (std::is_same_v<std::decay_t<decltype(tie)>, InterfaceWall>)
-        return tie.squared_frequency_bound(particles.particles());
-      else
-        return tie.squared_frequency_bound(*band_, particles.particles(), continuum);
-    },
-    tie_);
+  const double springs =
+    std::visit([&](const auto &tie) { return tie.squared_frequency_bound(particles.particles(), continuum); }, tie_);
   const double omega = std::sqrt(std::pow(std::max(particles_omega, continuum_omega), 2) + springs);
   const double safety = std::min(particles.settings().time_step_safety, continuum.settings().safety_factor);
   time_step_ = std::min({safety * 2.0 / omega, particles.time_step(), continuum.time_step()});
@@ -196,36 +201,32 @@ CoupledStepper::~CoupledStepper()
   particles_.set_constrained_bodies({});
 }
 
+void CoupledStepper::pass_driven_forces(const dem::ParticleSet &particles)
+{
+  const unsigned int n_nodes = band_->driven_points.nodes_per_point();
+  for (std::size_t q = 0; q < band_->driven_body.size(); ++q)
+    {
+      const std::uint32_t b = band_->driven_body[q];
+      for (unsigned int k = 0; k < n_nodes; ++k)
+        {
+          const double N = band_->driven_points.shape_value(q, k);
+          continuum_.add_external_force(band_->driven_points.x_dof(q, k), N * particles.fx[b]);
+          continuum_.add_external_force(band_->driven_points.y_dof(q, k), N * particles.fy[b]);
+        }
+    }
+}
+
 void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_time)
 {
   const Clock::time_point start = Clock::now();
   forces_ = CouplingForceSums{};
-  std::visit(
-    [&](auto &tie) {
-      if constexpr (std::is_same_v<std::decay_t<decltype(tie)>, InterfaceWall>)
-        {
-          // The first evaluation (impulse time dt / 2) follows no drift: no tangential increment.
-          tie.apply(particles, continuum_, impulse_time < time_step_ ? 0.0 : time_step_, forces_);
-        }
-      else
-        {
-          // The driven particles' contact forces go to the continuum's nodes first: the
-          // multipliers' predictors must see every force the continuum will feel.
-          const unsigned int n_nodes = band_->driven_points.nodes_per_point();
-          for (std::size_t q = 0; q < band_->driven_body.size(); ++q)
-            {
-              const std::uint32_t b = band_->driven_body[q];
-              for (unsigned int k = 0; k < n_nodes; ++k)
-                {
-                  const double N = band_->driven_points.shape_value(q, k);
-                  continuum_.add_external_force(band_->driven_points.x_dof(q, k), N * particles.fx[b]);
-                  continuum_.add_external_force(band_->driven_points.y_dof(q, k), N * particles.fy[b]);
-                }
-            }
-          tie.apply(*band_, particles, continuum_, impulse_time, forces_);
-        }
-    },
-    tie_);
+  // The driven particles' contact forces go to the continuum's nodes first: the multipliers'
+  // predictors must see every force the continuum will feel.
+  if (band_)
+    pass_driven_forces(particles);
+  // The first evaluation (impulse time dt / 2) follows no drift.
+  const TieTiming timing{impulse_time, impulse_time < time_step_ ? 0.0 : time_step_};
+  std::visit([&](auto &tie) { tie.apply(particles, continuum_, timing, forces_); }, tie_);
   times_.coupling += seconds_since(start);
 }
 

@@ -40,9 +40,7 @@
 // difference; energy_balance_error() measures what is left.
 #include "coupling/band_particles.h"
 #include "coupling/coupling_method.h"
-#include "coupling/interface_wall.h"
-#include "coupling/lagrange_tie.h"
-#include "coupling/penalty_tie.h"
+#include "coupling/coupling_tie.h"
 #include "coupling/sheet_crossing.h"
 #include "dem/dem_system.h"
 #include "fem/explicit_solver.h"
@@ -158,14 +156,18 @@ public:
 
 private:
   void apply_coupling(dem::ParticleSet &particles, double impulse_time);
+  /// Methods 1 and 2: the driven particles' contact forces passed to the continuum's nodes.
+  void pass_driven_forces(const dem::ParticleSet &particles);
   /// What both constructors end with: the common time step, the hook, the forces at t = 0.
   void start();
 
   dem::DemSystem &particles_;
   fem::ExplicitSolver &continuum_;
-  std::optional<OverlapBand> band_geometry_; ///< methods 1 and 2
-  std::optional<BandParticles> band_;        ///< methods 1 and 2
-  std::variant<LagrangeTie, PenaltyTie, InterfaceWall> tie_;
+  // Methods 1 and 2 only: method 3 has no band, and every step that only the band needs (the
+  // weights, the driven particles) tests band_.
+  std::optional<OverlapBand> band_geometry_;
+  std::optional<BandParticles> band_;
+  CouplingTie tie_; ///< the band's ties read band_: declared after it
   CouplingForceSums forces_;
   std::optional<SheetCrossing> crossing_;
   std::vector<Vec2> driven_tied_displacement_; ///< u(X) of each driven particle when tied [m]

@@ -141,10 +141,11 @@ void HybridRegionSpec::validate(const std::string &where) const
           driven_below_weight, "must lie in [0, 1) [-]");
   if (const auto *penalty = std::get_if<PenaltyCoupling>(&method))
     penalty->validate(where, "Hybrid/penalty factor");
-  if (std::holds_alternative<InterfaceCoupling>(method) && dem_region_length > 0.0)
-    throw std::invalid_argument(where + ": parameter 'Hybrid/coupling method' = interface cannot be combined with "
-                                        "'Hybrid/DEM region length' > 0 (the sheet crossing needs a band to cross): "
-                                        "use multipliers or penalty, or a DEM region length of 0");
+  if (!has_band(method) && dem_region_length > 0.0)
+    throw std::invalid_argument(where + ": parameter 'Hybrid/coupling method' = " + std::string(name_of(method)) +
+                                " cannot be combined with 'Hybrid/DEM region length' > 0 (the sheet crossing needs a "
+                                "band): use " + std::string(LagrangeMultiplierCoupling::name) + " or " +
+                                std::string(PenaltyCoupling::name) + ", or a DEM region length of 0");
 }
 
 void HybridPullOutSpec::validate(const std::string &where) const
@@ -212,7 +213,7 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
   const double beyond = 1.0 + g.tank_length + g.fill_height;
   // Method 3 (the non-overlapping interface) has neither band nor pad: the core is the box, whose
   // shared sides become the continuum's boundary edges that the grains touch.
-  const bool interface = std::holds_alternative<InterfaceCoupling>(spec.region.method);
+  const bool interface = !has_band(spec.region.method);
   const double inset = interface ? 0.0 : pad + w;
   const double cx0 = box_.left_shared ? inset : -beyond, cx1 = width + beyond;
   const double cy0 = box_.bottom_shared ? inset : -beyond;

@@ -203,9 +203,10 @@ void InterfaceWall::rebuild_candidates(const dem::ParticleSet &p, const fem::Exp
   ++n_rebuilds_;
 }
 
-void InterfaceWall::apply(dem::ParticleSet &p, fem::ExplicitSolver &continuum, double drift_time,
+void InterfaceWall::apply(dem::ParticleSet &p, fem::ExplicitSolver &continuum, const TieTiming &timing,
                           CouplingForceSums &sums)
 {
+  const double drift_time = timing.drift_time;
   const auto &u = continuum.displacement();
   const auto &v = continuum.velocity();
   if (rebuild_needed_ || candidates_stale(p, u))
@@ -264,7 +265,7 @@ void InterfaceWall::apply(dem::ParticleSet &p, fem::ExplicitSolver &continuum, d
     }
 }
 
-double InterfaceWall::squared_frequency_bound(const dem::ParticleSet &p) const
+double InterfaceWall::squared_frequency_bound(const dem::ParticleSet &p, const fem::ExplicitSolver & /*continuum*/) const
 {
   // One contact's stiffness couples the disc's contact point and the edge's nodes through
   // g = (1, -N_A, -N_B) (the gap's dependence on them), K_c = (kn n n^T + ks t t^T) (x) g g^T, whose

@@ -34,6 +34,7 @@
 #include "fem/explicit_solver.h"
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 namespace geohybrid::coupling
@@ -57,9 +58,12 @@ struct InterfaceEdge
   bool end_shared = false; ///< another interface edge starts at `end`
 };
 
+/// A coupling tie (coupling_tie.h), the one without a band.
 class InterfaceWall
 {
 public:
+  static constexpr std::string_view name = InterfaceCoupling::name;
+
   /// The edges of boundary `parameters.boundary_id` of `continuum`'s mesh (Q1 only) and the bins
   /// for the discs of `particles`; `skin` [m] is the candidates' margin (the DEM's Verlet skin).
   /// Throws std::invalid_argument for bad parameters, Q2 cells, a boundary id without faces, or
@@ -68,11 +72,11 @@ public:
                 const fem::ExplicitSolver &continuum, double skin);
 
   /// Evaluates the disc-edge contacts at the current positions and adds their forces to the
-  /// bodies and (as external forces) to the continuum. `drift_time` is the time over which the
-  /// velocities just moved both sides (the tangential springs' increment): the step, or 0 at the
-  /// first evaluation. Throws std::runtime_error if an interface node moved farther than the bins
-  /// allow (large deformation at the interface).
-  void apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, double drift_time,
+  /// bodies and (as external forces) to the continuum. `timing.drift_time` is the time over which
+  /// the velocities just moved both sides (the tangential springs' increment): the step, or 0 at
+  /// the first evaluation. Throws std::runtime_error if an interface node moved farther than the
+  /// bins allow (large deformation at the interface).
+  void apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, const TieTiming &timing,
              CouplingForceSums &sums);
 
   double elastic_energy() const { return elastic_energy_; }  ///< in the touching contacts now [J/m]
@@ -81,7 +85,8 @@ public:
 
   /// A bound on the squared frequency the interface springs add to the coupled system [1/s^2]
   /// (block Gershgorin on M^-1 K of the contacts, per node and per disc; see interface_wall.cc).
-  double squared_frequency_bound(const dem::ParticleSet &particles) const;
+  /// The continuum's masses are those the wall read when it was made.
+  double squared_frequency_bound(const dem::ParticleSet &particles, const fem::ExplicitSolver &continuum) const;
 
   const std::vector<InterfaceNode> &nodes() const { return nodes_; }
   const std::vector<InterfaceEdge> &edges() const { return edges_; }

@@ -9,6 +9,7 @@ namespace geohybrid::coupling
 {
 LagrangeTie::LagrangeTie(const BandParticles &band, const dem::ParticleSet &particles,
                          const fem::ExplicitSolver &continuum)
+  : band_(&band)
 {
   const std::size_t n = band.size();
   const unsigned int n_nodes = band.points.nodes_per_point();
@@ -63,10 +64,11 @@ void LagrangeTie::solve(unsigned int component, const Eigen::VectorXd &b, Eigen:
     x[Pinv[i]] = work_[i];
 }
 
-void LagrangeTie::apply(const BandParticles &band, dem::ParticleSet &particles, fem::ExplicitSolver &continuum,
-                        double impulse_time, CouplingForceSums &sums)
+void LagrangeTie::apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, const TieTiming &timing,
+                        CouplingForceSums &sums)
 {
-  const double tau = impulse_time;
+  const BandParticles &band = *band_;
+  const double tau = timing.impulse_time;
   if (!(tau > 0.0))
     throw std::invalid_argument("Lagrange multiplier coupling: the time step must be positive");
   const auto &velocity = continuum.velocity();

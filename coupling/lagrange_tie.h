@@ -19,30 +19,36 @@
 // LDL^T, one per component since the constrained DoFs may differ) and each step costs two solves.
 #include "coupling/band_particles.h"
 #include "coupling/coupling_forces.h"
+#include "coupling/coupling_method.h"
 #include "fem/explicit_solver.h"
 
 #include <Eigen/SparseCholesky>
 
 #include <array>
 #include <memory>
+#include <string_view>
 
 namespace geohybrid::coupling
 {
+/// A coupling tie (coupling_tie.h).
 class LagrangeTie
 {
 public:
+  static constexpr std::string_view name = LagrangeMultiplierCoupling::name;
+
+  /// `band` must outlive the tie: every apply() reads it.
   LagrangeTie(const BandParticles &band, const dem::ParticleSet &particles, const fem::ExplicitSolver &continuum);
 
   /// Solves for the multipliers at the current forces and velocities and applies them to both
-  /// sides (the continuum's through ExplicitSolver::add_external_force).
-  void apply(const BandParticles &band, dem::ParticleSet &particles, fem::ExplicitSolver &continuum,
-             double impulse_time, CouplingForceSums &sums);
+  /// sides (the continuum's through ExplicitSolver::add_external_force), for timing.impulse_time.
+  void apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, const TieTiming &timing,
+             CouplingForceSums &sums);
   double energy() const { return 0.0; } ///< a velocity constraint stores no energy
 
   /// The largest |tau A lambda - g*| of the last apply(): the velocity gap the correction leaves,
   /// round-off when the solve is right [m/s].
   double largest_velocity_gap() const { return largest_velocity_gap_; }
-  double squared_frequency_bound(const BandParticles &, const dem::ParticleSet &, const fem::ExplicitSolver &) const
+  double squared_frequency_bound(const dem::ParticleSet &, const fem::ExplicitSolver &) const
   {
     return 0.0; // the constraint adds no stiffness (it only joins masses)
   }
@@ -53,6 +59,7 @@ private:
   /// x = A^-1 b with the stored factor, without allocating (Eigen's solve() permutes through a temporary).
   void solve(unsigned int component, const Eigen::VectorXd &b, Eigen::VectorXd &x);
 
+  const BandParticles *band_;
   std::array<Matrix, 2> matrix_;
   std::array<std::unique_ptr<Factor>, 2> factor_;
   Eigen::VectorXd gap_, multiplier_, work_, check_;

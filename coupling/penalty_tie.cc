@@ -7,6 +7,7 @@ namespace geohybrid::coupling
 {
 PenaltyTie::PenaltyTie(const PenaltyCoupling &parameters, const BandParticles &band, const dem::ParticleSet &particles,
                        const fem::ExplicitSolver &continuum, double band_width)
+  : band_(&band)
 {
   parameters.validate();
   const double young_modulus = continuum.soil().elasticity().young_modulus();
@@ -25,9 +26,10 @@ PenaltyTie::PenaltyTie(const PenaltyCoupling &parameters, const BandParticles &b
     }
 }
 
-void PenaltyTie::apply(const BandParticles &band, dem::ParticleSet &particles, fem::ExplicitSolver &continuum,
-                       double /*impulse_time*/, CouplingForceSums &sums)
+void PenaltyTie::apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, const TieTiming & /*timing*/,
+                       CouplingForceSums &sums)
 {
+  const BandParticles &band = *band_;
   energy_ = 0.0;
   const auto &u = continuum.displacement();
   const unsigned int n_nodes = band.points.nodes_per_point();
@@ -51,9 +53,9 @@ void PenaltyTie::apply(const BandParticles &band, dem::ParticleSet &particles, f
     }
 }
 
-double PenaltyTie::squared_frequency_bound(const BandParticles &band, const dem::ParticleSet &particles,
-                                           const fem::ExplicitSolver &continuum) const
+double PenaltyTie::squared_frequency_bound(const dem::ParticleSet &particles, const fem::ExplicitSolver &continuum) const
 {
+  const BandParticles &band = *band_;
   // Row sums of |M^-1 K|: a particle's row is k_p (1 + sum_I |N_I|) / m_p, a node's row
   // sum_p |N_I| k_p (1 + sum_J |N_J|) / M_I.
   const unsigned int n_nodes = band.points.nodes_per_point();

@@ -13,29 +13,34 @@
 #include "coupling/coupling_method.h"
 #include "fem/explicit_solver.h"
 
+#include <string_view>
 #include <vector>
 
 namespace geohybrid::coupling
 {
+/// A coupling tie (coupling_tie.h).
 class PenaltyTie
 {
 public:
+  static constexpr std::string_view name = PenaltyCoupling::name;
+
+  /// `band` must outlive the tie: every apply() reads it.
   PenaltyTie(const PenaltyCoupling &parameters, const BandParticles &band, const dem::ParticleSet &particles,
              const fem::ExplicitSolver &continuum, double band_width);
 
   /// Adds the spring forces of the current positions to both sides (the continuum's through
-  /// ExplicitSolver::add_external_force); books the springs' energy.
-  void apply(const BandParticles &band, dem::ParticleSet &particles, fem::ExplicitSolver &continuum,
-             double impulse_time, CouplingForceSums &sums);
+  /// ExplicitSolver::add_external_force); books the springs' energy. The springs need no timing.
+  void apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, const TieTiming &timing,
+             CouplingForceSums &sums);
   double energy() const { return energy_; } ///< 1/2 sum k_p |g_p|^2 at the last apply() [J/m]
 
   /// A bound on the squared frequency the springs add (Gershgorin on M^-1 K_penalty, with the
   /// particles' weighted masses and the continuum's lumped masses) [1/s^2].
-  double squared_frequency_bound(const BandParticles &band, const dem::ParticleSet &particles,
-                                 const fem::ExplicitSolver &continuum) const;
+  double squared_frequency_bound(const dem::ParticleSet &particles, const fem::ExplicitSolver &continuum) const;
   double stiffness(std::size_t p) const { return stiffness_[p]; } ///< k_p [N/m/m]
 
 private:
+  const BandParticles *band_;
   std::vector<double> stiffness_;
   std::vector<Vec2> tied_displacement_; ///< the continuum's displacement at X_p when tied [m]
   double energy_ = 0.0;

@@ -47,7 +47,7 @@ TEST(InterfaceWall, DiscPressedOnAnEdgeAndSlidingAlongIt)
   InterfaceWall wall(interface_law(kn, ks, friction_angle), p, continuum, 0.4 * r);
   ASSERT_EQ(wall.edges().size(), 2u);
   CouplingForceSums sums;
-  wall.apply(p, continuum, 0.0, sums);
+  wall.apply(p, continuum, TieTiming{}, sums);
   EXPECT_NEAR(p.fy[0], force, 1e-9 * force);
   EXPECT_NEAR(p.fx[0], 0.0, 1e-12 * force);
   EXPECT_NEAR(node_force(continuum, wall, Vec2(0.0, 0.0), 1), -0.7 * force, 1e-9 * force);
@@ -60,7 +60,7 @@ TEST(InterfaceWall, DiscPressedOnAnEdgeAndSlidingAlongIt)
   on_node.add_disc(Vec2(0.1, r - delta), r, 2650.0, 0);
   InterfaceWall wall2(interface_law(kn, ks, friction_angle), on_node, continuum, 0.4 * r);
   CouplingForceSums sums2;
-  wall2.apply(on_node, continuum, 0.0, sums2);
+  wall2.apply(on_node, continuum, TieTiming{}, sums2);
   EXPECT_NEAR(on_node.fy[0], force, 1e-9 * force);
   EXPECT_EQ(wall2.n_touching(), 1u);
 
@@ -71,7 +71,7 @@ TEST(InterfaceWall, DiscPressedOnAnEdgeAndSlidingAlongIt)
   for (double drift : {0.0, dt})
     {
       p.fx[0] = p.fy[0] = p.torque[0] = 0.0;
-      wall.apply(p, continuum, drift, sums);
+      wall.apply(p, continuum, TieTiming{drift, drift}, sums);
     }
   EXPECT_NEAR(p.fx[0], -mu * force, 1e-9 * force);
   EXPECT_NEAR(p.fy[0], force, 1e-9 * force);

@@ -75,7 +75,7 @@ std::vector<double> run_column_to_rest(CoupledStepper &stepper, const std::funct
 
 ColumnRecord geostatic_column(const CouplingMethod &method, const ColumnSpec &spec)
 {
-  if (std::holds_alternative<InterfaceCoupling>(method))
+  if (!has_band(method))
     throw std::invalid_argument("geostatic column: the interface coupling (method 3) has no band");
   PatchGeometry g;
   g.rows = spec.rows;

@@ -85,7 +85,7 @@ RowPatchLayout commensurate_row_patch(double band_width, double cell_size)
 RowPatchTestResult row_patch_test(const CouplingMethod &method, const PlaneStrain &eps, PatchContinuumStress stress,
                                   const PatchGeometry &g, const RowPatchLayout &layout)
 {
-  if (std::holds_alternative<InterfaceCoupling>(method))
+  if (!has_band(method))
     throw std::invalid_argument("row patch test: the non-overlapping interface has no band (its patch test is "
                                 "interface_patch_test)");
   const double d = g.spacing(), h = g.row_height();
