@@ -313,8 +313,11 @@ int run_coupling_test_command(const std::string &input_file, bool resume)
   if (resume)
     throw std::invalid_argument(where + ": coupling-test has no checkpoint to resume from (run it again)");
   const CouplingTestInput in = parse_coupling_test(prm, where);
+  // Claimed before the benchmarks run, so that a directory holding another run's files is refused
+  // at once, not after minutes of work.
+  const std::filesystem::path out = prepare_output_directory(in.output_directory, false);
 
-  // ---- the three benchmarks, in memory: nothing is written if one of them fails ----
+  // ---- the three benchmarks, in memory: no file is written if one of them fails ----
   const auto start = std::chrono::steady_clock::now();
   const BenchmarkRunning running = [&](const char *what, const std::function<void()> &run) {
     try
@@ -346,7 +349,6 @@ int run_coupling_test_command(const std::string &input_file, bool resume)
   const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // ---- the results; summary.json last ----
-  const std::filesystem::path out = prepare_output_directory(in.output_directory, false);
   write_resolved_parameters(prm, out);
   write_energy_history(out / "energy_history.csv", f.energy.history);
   write_wave_history(out / "wave_reflection.csv", f.wave.history);

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -292,5 +293,23 @@ TEST(CouplingTestCommand, BadInputIsRefusedByNameWithNoOutput)
   EXPECT_THROW(geohybrid::apps::run_coupling_test_command(write_input(d.path, "penalty").string(), true),
                std::invalid_argument);
   EXPECT_FALSE(fs::exists(d.path / "out"));
+}
+
+// Another run's files in the output directory are refused before the benchmarks run, not after:
+// with a million undamped steps (minutes of work) the refusal must come at once.
+TEST(CouplingTestCommand, AnotherRunsDirectoryRefusedBeforeTheBenchmarksRun)
+{
+  const geohybrid::testing::TemporaryDirectory d("coupling_test_claimed");
+  fs::create_directories(d.path / "out");
+  std::ofstream(d.path / "out" / "summary.json") << "{}\n";
+  const fs::path input =
+    write_input(d.path, "penalty", "subsection Energy\n  set number of undamped steps = 1000000\nend\n");
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = error_of(input);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_NE(message.find("holds the files of another run"), std::string::npos) << message;
+  EXPECT_NE(message.find("--overwrite"), std::string::npos) << message;
+  EXPECT_LT(seconds, 20.0) << "refused only after the benchmarks ran";
+  EXPECT_TRUE(fs::exists(d.path / "out" / "summary.json")); // the other run's file is left alone
 }
 } // namespace coupling_app_test
