@@ -13,4 +13,4 @@ export OMP_WAIT_POLICY=PASSIVE # the coupled step's short parallel regions on a 
 # --overwrite: a second run of the job replaces the first one's files (only those geohybrid writes).
 "$root/build/apps/geohybrid" pullout "$root/examples/pullout_hybrid_wraparound_h040_b025.prm" --overwrite
 echo "results: $root/output/pullout_hybrid_wraparound_h040_b025 (summary.json, pullout_curve.png, pullout_curve.csv, sheet_tension.csv, sheet_displacements.csv)"
-echo "a demonstration of the workflow: the figure to compare with the experiment is the full-size one beside it in pullout_curve.png (validation/campaign_0.05/REPORT.md)"
+echo "a demonstration of the workflow: the figure to compare with the experiment is the full-size one beside it in pullout_curve.png (validation/REPORT.md)"
