@@ -25,4 +25,11 @@ void write_report(const std::vector<std::filesystem::path> &directories, const s
 /// The command line after `report`: directories and an optional `--output FILE.html` (default
 /// report.html in the working directory). Returns the exit code; throws for bad arguments.
 int run_report_command(const std::vector<std::string> &arguments);
+
+namespace report
+{
+/// The section of a sweep's directory (above), its titles as `heading` elements ("h3", or "h4"
+/// for a section nested in another).
+std::string sweep_section(const std::filesystem::path &directory, const std::string &heading = "h3");
+} // namespace report
 } // namespace geohybrid::apps
