@@ -4,6 +4,7 @@
 #include "parameters_hash.h"
 #include "plot.h"
 #include "pullout_command.h"
+#include "report_design.h"
 #include "report_html.h"
 #include "run_directory.h"
 #include "summary.h"
@@ -322,14 +323,20 @@ void write_report(const std::vector<fs::path> &directories, const fs::path &html
   for (std::size_t k = 0; k < directories.size(); ++k)
     {
       const fs::path &directory = directories[k];
-      const bool sweep = fs::exists(directory / "sweep.csv");
-      if (!sweep && !fs::exists(directory / "summary.json"))
+      // A design's directory holds a summary.json too: told apart by its design.csv first.
+      const bool design = report::is_design_directory(directory), sweep = !design && fs::exists(directory / "sweep.csv");
+      if (!design && !sweep && !fs::exists(directory / "summary.json"))
         throw std::runtime_error("report: '" + directory.string() +
-                                 "' is not a finished run's directory (no summary.json) nor a sweep's (no sweep.csv)");
-      const std::string id = "d" + std::to_string(k), title = name_of(directory) + (sweep ? " (sweep)" : "");
+                                 "' is not a finished run's directory (no summary.json), a sweep's (no sweep.csv) "
+                                 "nor a design's (no design.csv)");
+      const std::string id = "d" + std::to_string(k),
+                        title = name_of(directory) + (design ? " (design)" : sweep ? " (sweep)" : "");
       contents += "<li><a href=\"#" + id + "\">" + html::escaped(title) + "</a></li>";
       sections += "<section id=\"" + id + "\">\n<h2>" + html::escaped(title) + "</h2>\n" +
-                  (sweep ? report::sweep_section(directory) : run_section(directory)) + "</section>\n";
+                  (design  ? report::design_section(directory, id)
+                   : sweep ? report::sweep_section(directory)
+                           : run_section(directory)) +
+                  "</section>\n";
     }
   const std::time_t now = std::time(nullptr);
   char date[32];
