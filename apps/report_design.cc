@@ -88,7 +88,7 @@ std::string number_at(const nlohmann::json &summary, const char *key, int digits
   return at != summary.end() && at->is_number() ? number(at->get<double>(), digits) : std::string("?");
 }
 
-/// The outcome and the answer, then the design's own sentence, then what was sought and how.
+/// The outcome and the answer, then the design's own sentence about them.
 std::string answer_in_words(const nlohmann::json &summary, const std::string &entry_name)
 {
   const auto answer = summary.find("answer_m");
@@ -101,6 +101,12 @@ std::string answer_in_words(const nlohmann::json &summary, const std::string &en
                     "</p>\n";
   if (const std::string message = text_at(summary, "message"); !message.empty())
     out += "<p class=\"answer\">" + html::escaped(message) + ".</p>\n";
+  return out;
+}
+
+/// What the design sought and what it took: the criterion, the bracket, the runs.
+std::string how_sought(const nlohmann::json &summary)
+{
   std::string bracket = "?";
   if (const auto b = summary.find("bracket_m"); b != summary.end() && b->is_array() && b->size() == 2 &&
                                                 (*b)[0].is_number() && (*b)[1].is_number())
@@ -109,16 +115,16 @@ std::string answer_in_words(const nlohmann::json &summary, const std::string &en
   if (const auto s = summary.find("seeds"); s != summary.end() && s->is_array())
     for (const nlohmann::json &seed : *s)
       seeds += (seeds.empty() ? "" : ", ") + (seed.is_string() ? seed.get<std::string>() : seed.dump());
-  out += "<p>The smallest " + html::escaped(entry_name) + " in " + bracket + " with " +
-         html::escaped(text_at(summary, "criterion")) + ": target " + number_at(summary, "target_T_max_kN_per_m") +
-         " kN/m, k = " + number_at(summary, "margin_factor") + ", to " + number_at(summary, "tolerance_m") +
-         " m. Mode " + html::escaped(text_at(summary, "mode")) + ", " +
-         (seeds.empty() ? std::string("one run per value") : "seeds " + html::escaped(seeds)) + "; " +
-         number_at(summary, "n_values_tried") + " values tried, " + number_at(summary, "n_runs") + " runs, " +
-         number_at(summary, "wall_time_s", 3) + " s.</p>\n";
-  return out;
+  return "<p><b>criterion</b>: " + html::escaped(text_at(summary, "criterion")) + ", target " +
+         number_at(summary, "target_T_max_kN_per_m") + " kN/m, k = " + number_at(summary, "margin_factor") +
+         " &nbsp; <b>bracket</b>: " + bracket + ", to " + number_at(summary, "tolerance_m") + " m &nbsp; <b>mode</b>: " +
+         html::escaped(text_at(summary, "mode")) + ", " +
+         (seeds.empty() ? std::string("one run per value (std 0)") : "seeds " + html::escaped(seeds)) +
+         " &nbsp; <b>tried</b>: " + number_at(summary, "n_values_tried") + " values, " + number_at(summary, "n_runs") +
+         " runs in " + number_at(summary, "wall_time_s", 3) + " s</p>\n";
 }
 
+/// The summary's warnings (fem mode's seeds ignored, T_max falling as the value grows); none: empty.
 std::string warnings_list(const nlohmann::json &summary)
 {
   const auto warnings = summary.find("warnings");
@@ -160,7 +166,7 @@ std::string design_section(const fs::path &directory, const std::string &id)
   if (fs::exists(directory / "summary.json"))
     {
       const nlohmann::json summary = read_summary(directory / "summary.json");
-      out += answer_in_words(summary, design.entry_name) + warnings_list(summary);
+      out += answer_in_words(summary, design.entry_name) + how_sought(summary) + warnings_list(summary);
     }
   else
     out += "<p class=\"outcome\"><b>outcome</b>: none yet (no summary.json: the design is running or stopped); "
