@@ -4,6 +4,7 @@
 #include "parameters_hash.h"
 #include "plot.h"
 #include "pullout_command.h"
+#include "report_design.h"
 #include "report_html.h"
 #include "run_directory.h"
 #include "summary.h"
@@ -29,14 +30,6 @@ namespace
 {
 namespace fs = std::filesystem;
 
-std::string text_of(const fs::path &file)
-{
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 bool has_prefix(const std::string &s, const std::string &head) { return s.rfind(head, 0) == 0; }
 
 /// A directory's name as the page shows it (a trailing slash ignored).
@@ -52,9 +45,6 @@ std::string difference_percent(double value, double reference)
   std::snprintf(text, sizeof text, "%+.1f %%", 100.0 * (value / reference - 1.0));
   return text;
 }
-
-/// A number of sweep.csv (12 digits) to 4 for the page; an empty cell stays empty.
-std::string short_number(const std::string &cell) { return cell.empty() ? cell : number(std::stod(cell), 4); }
 
 /// The entries of `file` that differ from their defaults, as (path, value), read with `declare`;
 /// false if the file cannot be read so (another command's, or of an older version).
@@ -213,13 +203,16 @@ std::string run_section(const fs::path &directory)
       out += "<h3>Input</h3>\n";
       if (pullout_input)
         out += "<p>The entries off their defaults:</p>\n" + html::table({"entry", "value"}, input_rows, "input");
-      out += html::details("the resolved input, parameters.prm", text_of(directory / "parameters.prm"));
+      out += html::file_details("the resolved input, parameters.prm", directory / "parameters.prm");
     }
   return out;
 }
 
-std::string sweep_section(const fs::path &directory)
+} // namespace
+
+std::string report::sweep_section(const fs::path &directory, const std::string &heading)
 {
+  const auto titled = [&](const std::string &title) { return "<" + heading + ">" + title + "</" + heading + ">\n"; };
   std::ifstream csv(directory / "sweep.csv");
   std::string line;
   std::getline(csv, line);
@@ -256,7 +249,7 @@ std::string sweep_section(const fs::path &directory)
       std::vector<std::string> row(v.begin() + static_cast<long>(first_entry), v.begin() + static_cast<long>(member_column));
       row.push_back(v[1]);
       for (const std::size_t c : {std::size_t(2), std::size_t(3), std::size_t(4), std::size_t(5)})
-        row.push_back(short_number(v[c]));
+        row.push_back(html::short_number(v[c]));
       std::string paper;
       for (const std::vector<std::string> &m : members)
         {
@@ -276,7 +269,7 @@ std::string sweep_section(const fs::path &directory)
       row.push_back(paper.empty() ? "-" : paper);
       value_rows.push_back(row);
     }
-  out += "<h3>T_max over the seeds</h3>\n" + html::table(value_header, value_rows, "sweep-values");
+  out += titled("T_max over the seeds") + html::table(value_header, value_rows, "sweep-values");
 
   std::vector<std::string> member_header{"member"};
   for (std::size_t c = first_entry; c < member_column; ++c)
@@ -288,23 +281,25 @@ std::string sweep_section(const fs::path &directory)
     {
       std::vector<std::string> row{m[member_column]};
       row.insert(row.end(), m.begin() + static_cast<long>(first_entry), m.begin() + static_cast<long>(member_column));
-      for (const std::string &cell : {m[1], short_number(m[2]), m[member_column + 1]})
+      for (const std::string &cell : {m[1], html::short_number(m[2]), m[member_column + 1]})
         row.push_back(cell);
       member_rows.push_back(row);
     }
-  out += "<h3>Members</h3>\n" + html::table(member_header, member_rows, "sweep-members");
+  out += titled("Members") + html::table(member_header, member_rows, "sweep-members");
   if (fs::exists(directory / "sweep.prm"))
     {
       std::vector<std::vector<std::string>> input_rows;
       dealii::ParameterHandler input;
-      out += "<h3>Input</h3>\n";
+      out += titled("Input");
       if (entries_off_default(directory / "sweep.prm", declare_sweep_parameters, input_rows, input))
         out += html::table({"entry", "value"}, input_rows, "input");
-      out += html::details("the resolved sweep input, sweep.prm", text_of(directory / "sweep.prm"));
+      out += html::file_details("the resolved sweep input, sweep.prm", directory / "sweep.prm");
     }
   return out;
 }
 
+namespace
+{
 const char *const page_style = R"(
 body { font-family: sans-serif; margin: 2em auto; max-width: 1200px; color: #222; }
 h1 { border-bottom: 2px solid #456; } h2 { margin-top: 2.5em; border-bottom: 1px solid #aaa; }
@@ -328,14 +323,20 @@ void write_report(const std::vector<fs::path> &directories, const fs::path &html
   for (std::size_t k = 0; k < directories.size(); ++k)
     {
       const fs::path &directory = directories[k];
-      const bool sweep = fs::exists(directory / "sweep.csv");
-      if (!sweep && !fs::exists(directory / "summary.json"))
+      // A design's directory holds a summary.json too: told apart by its design.csv first.
+      const bool design = report::is_design_directory(directory), sweep = !design && fs::exists(directory / "sweep.csv");
+      if (!design && !sweep && !fs::exists(directory / "summary.json"))
         throw std::runtime_error("report: '" + directory.string() +
-                                 "' is not a finished run's directory (no summary.json) nor a sweep's (no sweep.csv)");
-      const std::string id = "d" + std::to_string(k), title = name_of(directory) + (sweep ? " (sweep)" : "");
+                                 "' is not a finished run's directory (no summary.json), a sweep's (no sweep.csv) "
+                                 "nor a design's (no design.csv)");
+      const std::string id = "d" + std::to_string(k),
+                        title = name_of(directory) + (design ? " (design)" : sweep ? " (sweep)" : "");
       contents += "<li><a href=\"#" + id + "\">" + html::escaped(title) + "</a></li>";
       sections += "<section id=\"" + id + "\">\n<h2>" + html::escaped(title) + "</h2>\n" +
-                  (sweep ? sweep_section(directory) : run_section(directory)) + "</section>\n";
+                  (design  ? report::design_section(directory, id)
+                   : sweep ? report::sweep_section(directory)
+                           : run_section(directory)) +
+                  "</section>\n";
     }
   const std::time_t now = std::time(nullptr);
   char date[32];

@@ -12,6 +12,11 @@
 // A sweep's directory (it holds sweep.csv, apps/sweep_results.h) gives sweep.png, the table of
 // T_max over the seeds per value (with the paper's values for the values that are its cases),
 // the table of the members and the sweep's input, sweep.prm.
+//
+// A design's directory (it holds design.csv, apps/design_results.h; it has a summary.json too, so
+// it is told apart first) gives the outcome and the answer in words, design.png, the table of the
+// values tried, the warnings, the input (design.prm, design_base.prm) and, collapsed, each value's
+// sweep section (apps/report_design.h).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -19,10 +24,17 @@
 namespace geohybrid::apps
 {
 /// Writes the page of `directories` to `html`. Throws std::runtime_error naming a directory that
-/// is neither a run's nor a sweep's, or `html` if it cannot be written.
+/// is neither a run's, a sweep's nor a design's, or `html` if it cannot be written.
 void write_report(const std::vector<std::filesystem::path> &directories, const std::filesystem::path &html);
 
 /// The command line after `report`: directories and an optional `--output FILE.html` (default
 /// report.html in the working directory). Returns the exit code; throws for bad arguments.
 int run_report_command(const std::vector<std::string> &arguments);
+
+namespace report
+{
+/// The section of a sweep's directory (above), its titles as `heading` elements ("h3"; "h4" when
+/// it is one value of a design's section).
+std::string sweep_section(const std::filesystem::path &directory, const std::string &heading = "h3");
+} // namespace report
 } // namespace geohybrid::apps

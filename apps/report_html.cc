@@ -1,8 +1,11 @@
 #include "report_html.h"
 
+#include "run_directory.h"
+
 #include <algorithm>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <stdexcept>
 
 namespace geohybrid::apps::html
@@ -72,4 +75,14 @@ std::string details(const std::string &summary, const std::string &text)
 {
   return "<details><summary>" + escaped(summary) + "</summary><pre>" + escaped(text) + "</pre></details>\n";
 }
+
+std::string file_details(const std::string &summary, const std::filesystem::path &file)
+{
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return details(summary, text.str());
+}
+
+std::string short_number(const std::string &cell) { return cell.empty() ? cell : number(std::stod(cell), 4); }
 } // namespace geohybrid::apps::html

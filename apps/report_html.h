@@ -23,4 +23,11 @@ std::string table(const std::vector<std::string> &header, const std::vector<std:
 
 /// A collapsed block of preformatted text (an input file).
 std::string details(const std::string &summary, const std::string &text);
+
+/// details() of the whole text of `file` (a resolved input).
+std::string file_details(const std::string &summary, const std::filesystem::path &file);
+
+/// A number of a results CSV (sweep.csv, design.csv: 12 digits) to 4 for the page; an empty cell
+/// (no value: a run that failed) stays empty.
+std::string short_number(const std::string &cell);
 } // namespace geohybrid::apps::html
