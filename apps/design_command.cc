@@ -8,6 +8,8 @@
 #include "run_directory.h"
 #include "sweep_command.h"
 
+#include "dem/checked_output.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <chrono>
@@ -52,13 +54,12 @@ void prepare_directory(const DesignDefinition &design, const dealii::ParameterHa
         fs::create_directories(out);
         std::ofstream resolved(out / "design.prm");
         prm.print_parameters(resolved, dealii::ParameterHandler::OutputStyle::ShortPRM);
+        dem::close_checked(resolved, out / "design.prm");
         dealii::ParameterHandler base;
         read_design_base(design, base);
         std::ofstream base_file(out / base_file_name);
         base.print_parameters(base_file, dealii::ParameterHandler::OutputStyle::ShortPRM);
-        if (!resolved || !base_file)
-          throw std::runtime_error("cannot write " + (out / "design.prm").string() + " or " +
-                                   (out / base_file_name).string());
+        dem::close_checked(base_file, out / base_file_name);
       }
     catch (const std::exception &e)
       {

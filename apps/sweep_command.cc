@@ -11,6 +11,8 @@
 #include "sweep_definition.h"
 #include "sweep_results.h"
 
+#include "dem/checked_output.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <boost/serialization/string.hpp>
@@ -148,8 +150,7 @@ SweepRun run_sweep(const SweepDefinition &sweep, const dealii::ParameterHandler 
     fs::create_directories(out);
     std::ofstream resolved(out / "sweep.prm");
     prm.print_parameters(resolved, dealii::ParameterHandler::OutputStyle::ShortPRM);
-    if (!resolved)
-      throw std::runtime_error("cannot write " + (out / "sweep.prm").string());
+    dem::close_checked(resolved, out / "sweep.prm");
   });
   if (rank == 0)
     std::cout << "geohybrid sweep: " << sweep.members.size() << " members of " << sweep.base_input
