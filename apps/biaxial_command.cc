@@ -15,6 +15,7 @@
 #include "plot.h"
 #include "run_directory.h"
 
+#include "dem/checked_output.h"
 #include "dem/sample_file.h"
 
 #include <algorithm>
@@ -422,8 +423,7 @@ std::string write_continuum_fragment(const std::filesystem::path &file, const de
     << "  set cohesion = " << number(c.cohesion) << "\n"
     << "  set dilatancy angle = " << number(c.dilatancy_angle_deg) << "\n"
     << "end\n";
-  if (!f)
-    throw std::runtime_error("cannot write " + file.string());
+  dem::close_checked(f, file);
   return "";
 }
 
@@ -467,8 +467,7 @@ int run_biaxial_command(const std::string &input_file, bool resume)
       for (const dem::BiaxialPoint &p : c.points)
         f << p.axial_strain << ',' << p.deviatoric_stress << ',' << p.volumetric_strain << ',' << p.lateral_strain
           << ',' << p.axial_stress << ',' << p.lateral_stress << '\n';
-      if (!f)
-        throw std::runtime_error("cannot write " + csv.string());
+      dem::close_checked(f, csv);
       deviator.series.push_back({csv, 1, 2, "sigma_0 = " + tag, 100.0, 1e-3});
       volume.series.push_back({csv, 1, 3, "sigma_0 = " + tag, 100.0, 100.0});
     }

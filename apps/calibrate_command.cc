@@ -24,6 +24,7 @@
 #include "run_directory.h"
 
 #include "dem/calibration.h"
+#include "dem/checked_output.h"
 #include "dem/measurements.h"
 #include "dem/sample_reuse.h"
 
@@ -279,8 +280,7 @@ int run_calibrate_command(const std::string &input_file, bool resume)
   csv << "iteration,friction_angle_deg,normal_stiffness_N_per_m_per_m,stiffness_ratio,peak_friction_angle_deg,"
          "young_modulus_Pa,poisson_ratio,friction_angle_error_deg,young_modulus_relative_error,poisson_ratio_error,"
          "converged,campaign_wall_time_s\n";
-  if (!csv)
-    throw std::runtime_error("cannot write " + (out / "calibration.csv").string());
+  dem::flush_checked(csv, out / "calibration.csv");
 
   std::cout << "geohybrid calibrate: targets phi' = " << number(targets.friction_angle_deg, 4) << " +/- "
             << number(targets.friction_angle_tolerance_deg, 3) << " deg, E = " << number(targets.young_modulus / 1e6, 4)
@@ -337,7 +337,9 @@ int run_calibrate_command(const std::string &input_file, bool resume)
         << p.stiffness_ratio << ',' << m.friction_angle_deg << ',' << m.young_modulus << ',' << m.poisson_ratio << ','
         << it.friction_angle_error_deg << ',' << it.young_modulus_error << ','
         << (targets.poisson_ratio ? number(it.poisson_ratio_error) : std::string()) << ',' << (it.converged ? 1 : 0)
-        << ',' << last_wall_time << std::endl;
+        << ',' << last_wall_time << '\n';
+    // At each iteration (a campaign takes minutes): a full disk stops the calibration here.
+    dem::flush_checked(csv, out / "calibration.csv");
     std::cout << "calibrate: iteration " << it.index << ": friction " << number(p.friction_angle_deg, 4) << " deg, kn "
               << number(p.normal_stiffness, 4) << " N/m/m, ks/kn " << number(p.stiffness_ratio, 3) << " -> phi' "
               << number(m.friction_angle_deg, 4) << " deg (" << signed_number(it.friction_angle_error_deg, 2) << "), E "
@@ -350,8 +352,7 @@ int run_calibrate_command(const std::string &input_file, bool resume)
   const auto start_time = std::chrono::steady_clock::now();
   const dem::CalibrationResult result = dem::calibrate_micro_parameters(start, targets, model, report);
   const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
-  if (!csv)
-    throw std::runtime_error("cannot write " + (out / "calibration.csv").string());
+  dem::close_checked(csv, out / "calibration.csv");
   if (!result.converged)
     throw std::runtime_error(where + ": calibration failed: " + result.failure + " (every iteration is in " +
                              (out / "calibration.csv").string() + ")");
@@ -390,8 +391,7 @@ int run_calibrate_command(const std::string &input_file, bool resume)
       << "  set restitution coefficient = " << number(particle.restitution) << "\n"
       << "  set bond new contacts = " << (particle.bond_new_contacts ? "true" : "false") << "\n"
       << "end\n";
-    if (!f)
-      throw std::runtime_error("cannot write " + fragment.string());
+    dem::close_checked(f, fragment);
   }
 
   Summary summary;

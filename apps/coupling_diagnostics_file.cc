@@ -1,6 +1,7 @@
 #include "coupling_diagnostics_file.h"
 
 #include "coupling/hybrid_pullout.h"
+#include "dem/checked_output.h"
 #include "dem/measurements.h"
 
 #include <algorithm>
@@ -15,8 +16,6 @@ DiagnosticsFile::DiagnosticsFile(const std::filesystem::path &directory)
   : path_(directory / "coupling_diagnostics.csv")
   , file_(path_)
 {
-  if (!file_)
-    throw std::runtime_error("cannot write " + path_.string());
   file_ << "time_s,head_displacement_m,head_tension_N_per_m,particles_unbalanced_ratio,"
            "continuum_out_of_balance_ratio,coupling_force_on_particles_x_N_per_m,"
            "coupling_force_on_particles_y_N_per_m,coupling_force_on_continuum_x_N_per_m,"
@@ -25,6 +24,7 @@ DiagnosticsFile::DiagnosticsFile(const std::filesystem::path &directory)
            "particle_boundary_work_J_per_m,continuum_internal_work_J_per_m,continuum_damping_work_J_per_m,"
            "continuum_gravity_work_J_per_m,coupling_work_on_continuum_J_per_m,continuum_sheet_truss_work_J_per_m,"
            "continuum_sheet_interface_work_J_per_m,energy_balance_error\n";
+  flush();
   file_.precision(10);
 }
 
@@ -110,11 +110,7 @@ void DiagnosticsFile::finish(Summary &summary)
               "(kinetic energy, truss and interface work, damping: fem::SheetEnergyLedger)");
 }
 
-void DiagnosticsFile::flush()
-{
-  if (!file_.flush())
-    throw std::runtime_error("cannot write " + path_.string() + " (is the disk full, or the directory not writable?)");
-}
+void DiagnosticsFile::flush() { dem::flush_checked(file_, path_); }
 
 void DiagnosticsFile::write_row(const double *row)
 {

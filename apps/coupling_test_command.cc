@@ -24,6 +24,8 @@
 #include "coupling_test_benchmarks.h"
 #include "run_directory.h"
 
+#include "dem/checked_output.h"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -290,8 +292,7 @@ void write_energy_history(const std::filesystem::path &file, const std::vector<b
   for (const bench::EnergySample &s : history)
     out << number(s.time) << ',' << number(s.relative_change) << ',' << number(s.particle_energy) << ','
         << number(s.continuum_kinetic) << ',' << number(s.continuum_elastic) << ',' << number(s.coupling_energy) << '\n';
-  if (!out)
-    throw std::runtime_error("cannot write " + file.string());
+  dem::close_checked(out, file);
 }
 
 void write_wave_history(const std::filesystem::path &file, const std::vector<bench::WaveSample> &history)
@@ -299,8 +300,7 @@ void write_wave_history(const std::filesystem::path &file, const std::vector<ben
   std::ofstream out = open_csv_rows(file, "time_s,reflected_energy_fraction,continuum_energy_fraction", std::nullopt);
   for (const bench::WaveSample &s : history)
     out << number(s.time) << ',' << number(s.reflected) << ',' << number(s.in_continuum) << '\n';
-  if (!out)
-    throw std::runtime_error("cannot write " + file.string());
+  dem::close_checked(out, file);
 }
 } // namespace
 

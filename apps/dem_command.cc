@@ -16,6 +16,7 @@
 #include "run_directory.h"
 #include "run_health.h"
 
+#include "dem/checked_output.h"
 #include "dem/checkpoint.h"
 #include "dem/dem_system.h"
 #include "dem/measurements.h"
@@ -350,12 +351,9 @@ int run_dem_command(const std::string &input_file, bool resume)
                   << p.rotation[b] << ',' << p.vx[b] << ',' << p.vy[b] << ',' << p.omega[b] << '\n';
     // Flushed at every row: a run killed later keeps them, and a full disk stops the run here,
     // naming the file.
-    if (!series.flush())
-      throw std::runtime_error("cannot write " + (out / "time_series.csv").string() +
-                               " (is the disk full, or the directory not writable?)");
-    if (history_out.is_open() && !history_out.flush())
-      throw std::runtime_error("cannot write " + (out / "particle_history.csv").string() +
-                               " (is the disk full, or the directory not writable?)");
+    dem::flush_checked(series, out / "time_series.csv");
+    if (history_out.is_open())
+      dem::flush_checked(history_out, out / "particle_history.csv");
   };
   // The rows up to the checkpoint are in the files already (write_rows flushes them), so that
   // a resumed run finds them.
@@ -410,10 +408,9 @@ int run_dem_command(const std::string &input_file, bool resume)
     save_checkpoint();
   const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   dem::write_particle_csv(system.particles(), out / "final_particles.csv");
-  series.close();
-  history_out.close();
-  if (!series || (history_out.is_open() && !history_out))
-    throw std::runtime_error("writing the time series in '" + out.string() + "' failed");
+  dem::close_checked(series, out / "time_series.csv");
+  if (history_out.is_open())
+    dem::close_checked(history_out, out / "particle_history.csv");
 
   const dem::EnergyBudget e = system.energy();
   const double height_of_packing = [&] {

@@ -5,8 +5,11 @@
 #include "design_results.h"
 #include "interrupt.h"
 #include "output_guard.h"
+#include "rank_error.h"
 #include "run_directory.h"
 #include "sweep_command.h"
+
+#include "dem/checked_output.h"
 
 #include <deal.II/base/mpi.h>
 
@@ -52,13 +55,12 @@ void prepare_directory(const DesignDefinition &design, const dealii::ParameterHa
         fs::create_directories(out);
         std::ofstream resolved(out / "design.prm");
         prm.print_parameters(resolved, dealii::ParameterHandler::OutputStyle::ShortPRM);
+        dem::close_checked(resolved, out / "design.prm");
         dealii::ParameterHandler base;
         read_design_base(design, base);
         std::ofstream base_file(out / base_file_name);
         base.print_parameters(base_file, dealii::ParameterHandler::OutputStyle::ShortPRM);
-        if (!resolved || !base_file)
-          throw std::runtime_error("cannot write " + (out / "design.prm").string() + " or " +
-                                   (out / base_file_name).string());
+        dem::close_checked(base_file, out / base_file_name);
       }
     catch (const std::exception &e)
       {
@@ -203,17 +205,17 @@ int run_design_command(const std::string &input_file, bool /*resume*/, MPI_Comm 
           met = dealii::Utilities::MPI::broadcast(communicator, met, 0);
         }
       steps.push_back(step);
-      if (writer)
-        {
-          write_design_table(design, steps, out / "design.csv");
-          std::cout << "geohybrid design: " << design.entry_name << " = " << step.text << " m: ";
-          if (complete)
-            std::cout << "T_max " << number(step.spread().mean, 5) << " kN/m (std " << number(step.spread().std, 3)
-                      << " over " << step.T_max_kN.size() << " run(s)), criterion " << number(step.criterion_kN(design.margin_factor), 5)
-                      << " kN/m: " << (met ? "met" : "not met") << std::endl;
-          else
-            std::cout << "a run did not finish: " << step.message << std::endl;
-        }
+      // Rank 0 writes the table; its failure (a full disk) stops every rank, not only the writer.
+      on_rank_zero(communicator, [&] {
+        write_design_table(design, steps, out / "design.csv");
+        std::cout << "geohybrid design: " << design.entry_name << " = " << step.text << " m: ";
+        if (complete)
+          std::cout << "T_max " << number(step.spread().mean, 5) << " kN/m (std " << number(step.spread().std, 3)
+                    << " over " << step.T_max_kN.size() << " run(s)), criterion " << number(step.criterion_kN(design.margin_factor), 5)
+                    << " kN/m: " << (met ? "met" : "not met") << std::endl;
+        else
+          std::cout << "a run did not finish: " << step.message << std::endl;
+      });
       if (!complete)
         break;
       bisection.record(step.value, met != 0);

@@ -5,6 +5,8 @@
 #include "summary.h"
 #include "sweep_results.h"
 
+#include "dem/checked_output.h"
+
 #include <algorithm>
 #include <fstream>
 #include <limits>
@@ -60,9 +62,7 @@ void write_design_table(const DesignDefinition &design, const std::vector<Design
           << number(design.target_kN) << ',' << (s.complete() ? (meets_criterion(design, s) ? "yes" : "no") : "")
           << ',' << csv_field(s.directory) << ',' << csv_field(s.message) << '\n';
     }
-  out.close();
-  if (!out)
-    throw std::runtime_error("cannot write " + csv.string() + " (is the disk full?)");
+  dem::close_checked(out, csv);
 }
 
 bool plot_design(const DesignDefinition &design, const DesignAnswer &answer, bool with_seeds,

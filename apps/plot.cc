@@ -1,5 +1,7 @@
 #include "plot.h"
 
+#include "dem/checked_output.h"
+
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -49,6 +51,9 @@ bool plot_png(const std::filesystem::path &png, const std::string &title, const 
           gp << "reset\nset datafile separator ','\nset key autotitle columnhead\nset grid\n";
       }
     gp << "unset multiplot\n";
+    // A script cut short by a full disk would only make gnuplot fail, with a note that the
+    // results are complete: the disk's failure is the run's.
+    dem::close_checked(gp, script);
   }
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
     {

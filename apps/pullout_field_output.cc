@@ -2,6 +2,7 @@
 
 #include "plot.h"
 
+#include "dem/checked_output.h"
 #include "dem/pullout_fields.h"
 
 #include <algorithm>
@@ -22,12 +23,6 @@ std::string millimetres(double metres)
   s.imbue(std::locale::classic());
   s << std::setprecision(6) << 1e3 * metres;
   return s.str();
-}
-
-void check_written(std::ofstream &f, const std::filesystem::path &file)
-{
-  if (!f.flush())
-    throw std::runtime_error("cannot write " + file.string());
 }
 } // namespace
 
@@ -136,8 +131,7 @@ void PullOutFieldOutput::write_fields(const std::string &tag, const dem::DemSyst
         << d.vx << ',' << d.vy << '\n';
       largest = std::max(largest, std::hypot(d.dx, d.dy));
     }
-  check_written(g, grains);
-  g.close();
+  dem::close_checked(g, grains);
   // Arrows magnified so that the longest is 5 % of the tank.
   const double magnify = largest > 0.0 ? 0.05 * width_ / largest : 1.0;
   std::ostringstream title;
@@ -158,8 +152,7 @@ void PullOutFieldOutput::write_fields(const std::string &tag, const dem::DemSyst
       f << c.x1 << ',' << c.y1 << ',' << c.x2 - c.x1 << ',' << c.y2 - c.y1 << ',' << c.normal_force << '\n';
       strongest = std::max(strongest, c.normal_force);
     }
-  check_written(f, forces);
-  f.close();
+  dem::close_checked(f, forces);
   std::ostringstream force_title;
   force_title << "Contact normal forces [N/m] at a head displacement of " << tag << " mm (largest "
               << std::setprecision(3) << strongest << " N/m)";
@@ -193,8 +186,7 @@ void PullOutFieldOutput::finish()
         out << ',' << u[k];
       out << '\n';
     }
-  check_written(out, file);
-  out.close();
+  dem::close_checked(out, file);
   std::vector<PlotSeries> series;
   for (std::size_t k = 0; k < uplift_tags_.size(); ++k)
     series.push_back({file, 2, static_cast<int>(4 + k), "head displacement " + uplift_tags_[k] + " mm", 1e3, 1e3});

@@ -1,5 +1,7 @@
 #include "pullout_forces_output.h"
 
+#include "dem/checked_output.h"
+
 #include <iomanip>
 #include <locale>
 #include <stdexcept>
@@ -25,8 +27,7 @@ PullForcesOutput::PullForcesOutput(const std::filesystem::path &directory, doubl
           "node_wall_kN_per_m,sheet_inertia_kN_per_m,sheet_damping_kN_per_m,normal_force_kN_per_m,"
           "mobilised_friction,soil_kinetic_energy_J_per_m,local_damping_dissipated_J_per_m,"
           "friction_dissipated_J_per_m,clamp_work_J_per_m\n";
-  if (!out_)
-    throw std::runtime_error("cannot write " + file_.string());
+  dem::flush_checked(out_, file_);
 }
 
 PullForcesOutput::PullForcesOutput(const std::filesystem::path &directory, double mu, const dem::CommandState &saved)
@@ -78,13 +79,11 @@ void PullForcesOutput::write_row(const double *row)
 {
   for (std::size_t k = 0; k < n_columns; ++k)
     out_ << row[k] << (k + 1 < n_columns ? ',' : '\n');
-  if (!out_.flush())
-    throw std::runtime_error("cannot write " + file_.string());
+  dem::flush_checked(out_, file_);
 }
 
 void PullForcesOutput::finish()
 {
-  if (!out_.flush())
-    throw std::runtime_error("cannot write " + file_.string());
+  dem::flush_checked(out_, file_);
 }
 } // namespace geohybrid::apps

@@ -2,6 +2,7 @@
 
 #include "apps/interrupt.h"
 #include "apps/plot.h"
+#include "dem/checked_output.h"
 
 #include <algorithm>
 #include <iostream>
@@ -39,9 +40,7 @@ void PulloutOutput::flush()
                                                             {&displacements_, "sheet_displacements.csv"},
                                                             {&profiles_, "sheet_tension.csv"}};
   for (const auto &[file, name] : files)
-    if (!file->flush())
-      throw std::runtime_error("cannot write " + (directory_ / name).string() +
-                               " (is the disk full, or the directory not writable?)");
+    dem::flush_checked(*file, directory_ / name);
 }
 
 PulloutOutput::PulloutOutput(const std::filesystem::path &directory, double sheet_width, std::vector<double> profiles_at,
@@ -117,10 +116,6 @@ void PulloutOutput::finish(const std::string &label, const CurveReferences &refe
   flush();
   std::vector<PlotSeries> series{{directory_ / "pullout_curve.csv", 1, 2,
                                   references.demonstration.empty() ? label : label + ", demonstration", 1e3, 1.0}};
-  const auto check = [](std::ofstream &f, const std::filesystem::path &file) {
-    if (!f.flush())
-      throw std::runtime_error("cannot write " + file.string() + " (is the disk full, or the directory not writable?)");
-  };
   if (const auto &full = references.full_size)
     {
       const std::filesystem::path file = directory_ / "reference_curve.csv";
@@ -128,7 +123,7 @@ void PulloutOutput::finish(const std::string &label, const CurveReferences &refe
       f << "head_displacement_m,head_tension_kN_per_m\n";
       for (const std::array<double, 2> &row : full->mean_curve)
         f << number(row[0]) << ',' << number(row[1]) << '\n';
-      check(f, file);
+      dem::close_checked(f, file);
       series.push_back({file, 1, 2,
                         "full size, mean of " + std::to_string(full->seeds.size()) + " seeds (" +
                           full->directory.string() + "), T_max " + number(full->T_max.mean, 4) + " kN/m",
@@ -141,7 +136,7 @@ void PulloutOutput::finish(const std::string &label, const CurveReferences &refe
       f << "head_displacement_m,T_max_kN_per_m\n0," << number(*T / 1e3) << '\n'
         << number(std::max(final_displacement, references.full_size ? references.full_size->mean_curve.back()[0] : 0.0))
         << ',' << number(*T / 1e3) << '\n';
-      check(f, line);
+      dem::close_checked(f, line);
       series.push_back({line, 1, 2, "experiment, T_max", 1e3, 1.0});
     }
   const std::string title = references.demonstration.empty()

@@ -9,6 +9,8 @@
 #include "run_directory.h"
 #include "spread.h"
 
+#include "dem/checked_output.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <algorithm>
@@ -139,9 +141,7 @@ int run_pullout_seeds(const std::string &input_file, int n_seeds, MPI_Comm commu
       curve << std::setprecision(10) << spread_of(u).mean << ',' << s.mean << ',' << s.min << ',' << s.max << ','
             << s.std << '\n';
     }
-  if (!curve.flush())
-    throw std::runtime_error("cannot write " + (out / "pullout_curve.csv").string());
-  curve.close();
+  dem::close_checked(curve, out / "pullout_curve.csv");
 
   std::vector<PlotSeries> series{{out / "pullout_curve.csv", 1, 3, "min - max over the seeds", 1e3, 1.0,
                                   "filledcurves fs transparent solid 0.25 noborder", {4}},

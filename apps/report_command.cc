@@ -11,6 +11,8 @@
 #include "sweep_definition.h"
 #include "sweep_results.h"
 
+#include "dem/checked_output.h"
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <unistd.h>
@@ -350,9 +352,7 @@ void write_report(const std::vector<fs::path> &directories, const fs::path &html
       << ". The paper: Lajevardi, Briançon, Dias et al., <i>Experimental and numerical studies for geosynthetics "
          "anchorage with wrap around</i> (Tables 3, 4: experiments; Table 6: its PFC2D).</p>\n<ul class=\"contents\">"
       << contents << "</ul>\n" << sections << "</body>\n</html>\n";
-  out.close();
-  if (!out)
-    throw std::runtime_error("report: cannot write " + html_file.string());
+  dem::close_checked(out, html_file);
 }
 
 int run_report_command(const std::vector<std::string> &arguments)

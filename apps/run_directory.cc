@@ -2,6 +2,8 @@
 
 #include "output_guard.h"
 
+#include "dem/checked_output.h"
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
@@ -178,8 +180,7 @@ void write_resolved_parameters(const dealii::ParameterHandler &prm, const std::f
 {
   std::ofstream out(directory / "parameters.prm");
   prm.print_parameters(out, dealii::ParameterHandler::OutputStyle::PRM);
-  if (!out)
-    throw std::runtime_error("cannot write " + (directory / "parameters.prm").string());
+  dem::close_checked(out, directory / "parameters.prm");
 }
 
 namespace
@@ -227,9 +228,7 @@ std::ofstream open_csv_rows(const std::filesystem::path &file, const std::string
       {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         out << kept;
-        out.close();
-        if (!out)
-          fail("cannot write '" + temporary.string() + "'");
+        dem::close_checked(out, temporary);
       }
       std::error_code error;
       std::filesystem::rename(temporary, file, error);
@@ -242,8 +241,7 @@ std::ofstream open_csv_rows(const std::filesystem::path &file, const std::string
     }
   std::ofstream out(file, std::ios::trunc);
   out << header << '\n';
-  if (!out)
-    fail("cannot be written");
+  dem::flush_checked(out, file); // the header on the disk, not only in the buffer
   return out;
 }
 

@@ -1,5 +1,7 @@
 #include "summary.h"
 
+#include "dem/checked_output.h"
+
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
@@ -42,9 +44,7 @@ void Summary::write(const std::filesystem::path &file) const
     // Bytes that are not UTF-8 (a path in another encoding) are replaced rather than refused:
     // the summary of a finished run must not fail on its output directory's name.
     out << json_.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
-    out.close();
-    if (!out)
-      throw std::runtime_error("cannot write " + temporary.string() + " (is the disk full?)");
+    dem::close_checked(out, temporary);
   }
   std::error_code error;
   std::filesystem::rename(temporary, file, error);

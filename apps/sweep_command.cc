@@ -11,6 +11,8 @@
 #include "sweep_definition.h"
 #include "sweep_results.h"
 
+#include "dem/checked_output.h"
+
 #include <deal.II/base/mpi.h>
 
 #include <boost/serialization/string.hpp>
@@ -148,8 +150,7 @@ SweepRun run_sweep(const SweepDefinition &sweep, const dealii::ParameterHandler 
     fs::create_directories(out);
     std::ofstream resolved(out / "sweep.prm");
     prm.print_parameters(resolved, dealii::ParameterHandler::OutputStyle::ShortPRM);
-    if (!resolved)
-      throw std::runtime_error("cannot write " + (out / "sweep.prm").string());
+    dem::close_checked(resolved, out / "sweep.prm");
   });
   if (rank == 0)
     std::cout << "geohybrid sweep: " << sweep.members.size() << " members of " << sweep.base_input
@@ -190,46 +191,46 @@ SweepRun run_sweep(const SweepDefinition &sweep, const dealii::ParameterHandler 
 
   unsigned int n_failed = 0;
   SweepRun run;
-  if (rank == 0)
-    {
-      std::vector<MemberOutcome> &outcomes = run.outcomes;
-      outcomes.resize(sweep.members.size());
-      for (const std::vector<std::string> &from_rank : gathered)
-        for (const std::string &record : from_rank)
-          {
-            const std::size_t tab = record.find('\t'), second = record.find('\t', tab + 1);
-            MemberOutcome &o = outcomes.at(std::stoul(record.substr(0, tab)));
-            o.status = record.substr(tab + 1, second - tab - 1);
-            o.message = record.substr(second + 1);
-          }
-      std::size_t n_finished = 0, n_kept = 0;
-      for (std::size_t m = 0; m < outcomes.size(); ++m)
+  // Rank 0 writes the table; its failure (a full disk) stops every rank, not only the writer.
+  on_rank_zero(communicator, [&] {
+    std::vector<MemberOutcome> &outcomes = run.outcomes;
+    outcomes.resize(sweep.members.size());
+    for (const std::vector<std::string> &from_rank : gathered)
+      for (const std::string &record : from_rank)
         {
-          MemberOutcome &o = outcomes[m];
-          if (o.status == "finished" || o.status == "kept")
-            try
-              {
-                const nlohmann::json json = read_summary(out / sweep.members[m].name / "summary.json");
-                o.T_max_kN = json.at("T_max_kN_per_m").get<double>();
-                (o.status == "kept" ? n_kept : n_finished) += 1;
-              }
-            catch (const std::exception &e)
-              {
-                o.status = "failed";
-                o.message = std::string("no T_max_kN_per_m in its summary.json: ") + e.what();
-              }
-          n_failed += o.status == "failed" ? 1 : 0;
+          const std::size_t tab = record.find('\t'), second = record.find('\t', tab + 1);
+          MemberOutcome &o = outcomes.at(std::stoul(record.substr(0, tab)));
+          o.status = record.substr(tab + 1, second - tab - 1);
+          o.message = record.substr(second + 1);
         }
-      write_sweep_table(sweep, outcomes, out / "sweep.csv");
-      plot_sweep(sweep, out / "sweep.csv", out / "sweep.png");
-      std::cout << "geohybrid sweep: " << n_finished << " member(s) run, " << n_kept << " kept from before, " << n_failed
-                << " failed, " << outcomes.size() - n_finished - n_kept - n_failed << " not finished, in "
-                << number(std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count(), 4)
-                << " s; results in " << (out / "sweep.csv").string() << std::endl;
-      for (std::size_t m = 0; m < outcomes.size(); ++m)
-        if (outcomes[m].status == "failed")
-          std::cerr << "geohybrid sweep: failed: " << sweep.members[m].name << ": " << outcomes[m].message << '\n';
-    }
+    std::size_t n_finished = 0, n_kept = 0;
+    for (std::size_t m = 0; m < outcomes.size(); ++m)
+      {
+        MemberOutcome &o = outcomes[m];
+        if (o.status == "finished" || o.status == "kept")
+          try
+            {
+              const nlohmann::json json = read_summary(out / sweep.members[m].name / "summary.json");
+              o.T_max_kN = json.at("T_max_kN_per_m").get<double>();
+              (o.status == "kept" ? n_kept : n_finished) += 1;
+            }
+          catch (const std::exception &e)
+            {
+              o.status = "failed";
+              o.message = std::string("no T_max_kN_per_m in its summary.json: ") + e.what();
+            }
+        n_failed += o.status == "failed" ? 1 : 0;
+      }
+    write_sweep_table(sweep, outcomes, out / "sweep.csv");
+    plot_sweep(sweep, out / "sweep.csv", out / "sweep.png");
+    std::cout << "geohybrid sweep: " << n_finished << " member(s) run, " << n_kept << " kept from before, " << n_failed
+              << " failed, " << outcomes.size() - n_finished - n_kept - n_failed << " not finished, in "
+              << number(std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count(), 4)
+              << " s; results in " << (out / "sweep.csv").string() << std::endl;
+    for (std::size_t m = 0; m < outcomes.size(); ++m)
+      if (outcomes[m].status == "failed")
+        std::cerr << "geohybrid sweep: failed: " << sweep.members[m].name << ": " << outcomes[m].message << '\n';
+  });
   if (with_mpi)
     n_failed = dealii::Utilities::MPI::broadcast(communicator, n_failed, 0);
   if (signal != 0) // the same command continues a sweep, whatever its members had saved

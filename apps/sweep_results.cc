@@ -4,6 +4,8 @@
 #include "run_directory.h"
 #include "spread.h"
 
+#include "dem/checked_output.h"
+
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -110,9 +112,7 @@ void write_sweep_table(const SweepDefinition &sweep, const std::vector<MemberOut
         out << ',' << seeds;
       out << ",," << csv_field(failed) << '\n';
     }
-  out.close();
-  if (!out)
-    throw std::runtime_error("cannot write " + csv.string() + " (is the disk full?)");
+  dem::close_checked(out, csv);
 }
 
 bool plot_sweep(const SweepDefinition &sweep, const std::filesystem::path &csv, const std::filesystem::path &png)

@@ -1,4 +1,5 @@
 #include "packing.h"
+#include "checked_output.h"
 
 #include <algorithm>
 #include <cmath>
@@ -329,8 +330,6 @@ std::string SizeDistribution::to_string() const
 void write_particle_csv(const ParticleSet &p, const std::filesystem::path &file)
 {
   std::ofstream out(file);
-  if (!out)
-    throw std::runtime_error("cannot write particle CSV '" + file.string() + "'");
   out << "x,y,radius,vx,vy,omega,cluster_id\n" << std::setprecision(17);
   for (std::size_t d = 0; d < p.n_discs_total(); ++d)
     {
@@ -340,5 +339,6 @@ void write_particle_csv(const ParticleSet &p, const std::filesystem::path &file)
           << p.vx[b] - p.omega[b] * ly << ',' << p.vy[b] + p.omega[b] * lx << ',' << p.omega[b] << ','
           << (p.n_discs[b] > 1 ? p.body_id[b] : -1) << '\n';
     }
+  close_checked(out, file);
 }
 } // namespace geohybrid::dem

@@ -44,7 +44,8 @@ double loose_lattice_height(const LooseLatticeSpec &spec);
 ParticleSet read_particle_csv(const std::filesystem::path &file, double density, double overlap_tolerance);
 
 /// Writes the particle CSV (one row per disc, cluster_id = body id for clusters, -1 for discs),
-/// the format read_particle_csv() reads.
+/// the format read_particle_csv() reads. Throws std::runtime_error naming the file if a write
+/// fails (dem/checked_output.h).
 void write_particle_csv(const ParticleSet &particles, const std::filesystem::path &file);
 
 /// Deterministic uniform number in [0, 1) from a 64-bit generator state (SplitMix64), so that

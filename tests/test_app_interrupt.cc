@@ -3,31 +3,29 @@
 // the loop's check, the exit status and the files on disk are those a user meets: the status of a
 // process the signal killed (143, 130), no summary.json, a checkpoint, every recorded row in the
 // curve files, and a --resume that ends where a run that never stopped ends, bit for bit.
+#include "geohybrid_child.h"
 #include "small_hybrid_pullout_input.h"
 #include "text_file.h"
 #include "tiny_pullout_input.h"
 
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <csignal>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
 
-extern char **environ;
-
 namespace fs = std::filesystem;
 using geohybrid::testing::lines_of;
 using geohybrid::testing::read_text;
+using geohybrid::testing::run_geohybrid;
+using geohybrid::testing::start_geohybrid;
+using geohybrid::testing::wait_for;
 
 namespace
 {
@@ -38,56 +36,6 @@ fs::path interrupt_test_directory()
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
-}
-
-/// `geohybrid ARGS...` started in a child process, its stdout and stderr in `log`. The child gets
-/// this process's environment without the MPI launcher's variables (this test program is an MPI
-/// process itself; the child is a fresh singleton).
-pid_t start_geohybrid(const std::vector<std::string> &arguments, const fs::path &log)
-{
-  std::vector<std::string> words{GEOHYBRID_EXECUTABLE};
-  words.insert(words.end(), arguments.begin(), arguments.end());
-  std::vector<char *> argv;
-  for (std::string &w : words)
-    argv.push_back(w.data());
-  argv.push_back(nullptr);
-  std::vector<std::string> variables;
-  for (char **v = environ; *v; ++v)
-    {
-      const std::string variable = *v;
-      bool launcher = false;
-      for (const char *prefix : {"OMPI_", "PMIX_", "OPAL_", "ORTE_", "PRTE_"})
-        launcher = launcher || variable.rfind(prefix, 0) == 0;
-      if (!launcher)
-        variables.push_back(variable);
-    }
-  std::vector<char *> envp;
-  for (std::string &v : variables)
-    envp.push_back(v.data());
-  envp.push_back(nullptr);
-  posix_spawn_file_actions_t files;
-  posix_spawn_file_actions_init(&files);
-  posix_spawn_file_actions_addopen(&files, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&files, STDOUT_FILENO, STDERR_FILENO);
-  pid_t pid = -1;
-  const int error = posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&files);
-  EXPECT_EQ(error, 0) << "cannot start " << argv[0] << ": " << std::strerror(error);
-  return error == 0 ? pid : -1;
-}
-
-/// The child's exit status (128 + the signal if a signal killed it), or -1.
-int wait_for(pid_t pid)
-{
-  int status = 0;
-  if (pid <= 0 || waitpid(pid, &status, 0) != pid)
-    return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
-}
-
-int run_geohybrid(const std::vector<std::string> &arguments, const fs::path &log)
-{
-  return wait_for(start_geohybrid(arguments, log));
 }
 
 /// Waits until `ready` holds or the child has ended (false then), polling every millisecond.

@@ -6,6 +6,7 @@
 //
 // The disk is "full" through a file-size limit on this process (file_size_limit.h): the writes
 // fail with EFBIG instead of ENOSPC, through the same write(2) and the same HDF5 error path.
+// The DEM's text files (a particle CSV) are checked as every command's (dem/checked_output.h).
 #include "dem/checkpoint.h"
 #include "dem/dem_system.h"
 #include "dem/packing.h"
@@ -163,4 +164,29 @@ TEST(FullDisk, FailureAtTheFlushIsReportedAndLeavesNothingOpen)
   EXPECT_NE(message.find("particles.h5"), std::string::npos) << message;
   EXPECT_EQ(open_hdf5_objects(), 0);
   EXPECT_EQ(writer.n_snapshots(), 0u);
+}
+
+// A particle CSV (dem::write_particle_csv, final_particles.csv of `geohybrid dem`) on a full
+// disk (/dev/full: every write fails with ENOSPC). Three discs fit in the stream's buffer, whose
+// failure comes only at the close: the close is checked (dem/checked_output.h), not left to the
+// destructor, which would say nothing.
+TEST(FullDisk, ParticleCsvNamesTheFile)
+{
+  if (!fs::exists("/dev/full"))
+    GTEST_SKIP() << "no /dev/full on this system";
+  TemporaryDirectory directory;
+  LooseLatticeSpec lattice;
+  lattice.n_particles = 3;
+  const fs::path file = directory.path / "final_particles.csv";
+  fs::create_symlink("/dev/full", file);
+  std::string message;
+  try
+    {
+      write_particle_csv(make_loose_lattice(lattice), file);
+    }
+  catch (const std::runtime_error &e)
+    {
+      message = e.what();
+    }
+  EXPECT_NE(message.find("cannot write " + file.string() + " (is the disk full"), std::string::npos) << message;
 }
