@@ -154,17 +154,10 @@ void write_dem_summary(ParameterHandler &prm, const PullOutInput &in, const DemP
   summary.set("resumed_at_head_displacement_m", start.resumed ? u_first : std::nan("")); // null for a straight run
   summary.set("fill_wall_time_s", start.fill_time);
   // The cost of the run in steps: filling (each layer's growth and settling, then the settling
-  // with the sheet freed) and pulling.
-  double fill_steps = static_cast<double>(tank.n_final_settling_steps);
-  for (const dem::TankLayer &layer : tank.tank.layers)
-    fill_steps += static_cast<double>(layer.n_growth_steps + layer.n_settling_steps);
-  summary.set("n_fill_steps", fill_steps);
-  // Lifts taken from 'Filling/lift cache directory': their steps were made by an earlier run.
-  double kept_steps = 0.0;
-  for (const dem::TankLayer &layer : tank.tank.layers)
-    if (layer.from_cache)
-      kept_steps += static_cast<double>(layer.n_growth_steps + layer.n_settling_steps);
-  summary.set("n_fill_steps_of_kept_lifts", kept_steps);
+  // with the sheet freed) and pulling; of the fill, the lifts taken from 'Filling/lift cache
+  // directory', whose steps an earlier run made.
+  summary.set("n_fill_steps", static_cast<double>(dem::fill_steps(tank)));
+  summary.set("n_fill_steps_of_kept_lifts", static_cast<double>(dem::fill_steps_of_kept_lifts(tank)));
   summary.set("wall_time_s", wall_time);
   summary.set("parameters_hash", pullout_parameters_hash(prm));
   warnings.insert(warnings.end(), found.begin(), found.end());

@@ -188,7 +188,7 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
   const dem::ParticleSet &p = particles.particles();
   set_up_.n_particles = p.n_bodies();
   set_up_.particle_time_step = particles.time_step();
-  set_up_.fill_steps = particles.step_count();
+  set_up_.fill_steps = dem::fill_steps(*tank_); // every lift's, not the last system's count
   const dem::PullOutGeometry &g = spec.tank.geometry;
 
   // The band and the pad from the grains as filled: w four mean disc diameters unless given, the

@@ -213,6 +213,23 @@ TankFillingSpec PullOutTankSpec::resolved_filling() const
   return t;
 }
 
+std::uint64_t fill_steps(const PullOutTank &tank)
+{
+  std::uint64_t steps = tank.n_final_settling_steps;
+  for (const TankLayer &layer : tank.tank.layers)
+    steps += layer.n_growth_steps + layer.n_settling_steps;
+  return steps;
+}
+
+std::uint64_t fill_steps_of_kept_lifts(const PullOutTank &tank)
+{
+  std::uint64_t steps = 0;
+  for (const TankLayer &layer : tank.tank.layers)
+    if (layer.from_cache)
+      steps += layer.n_growth_steps + layer.n_settling_steps;
+  return steps;
+}
+
 PullOutTank fill_pull_out_tank(const PullOutTankSpec &spec, const std::function<void(double)> &progress)
 {
   spec.validate("pull-out tank");

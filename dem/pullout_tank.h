@@ -115,6 +115,13 @@ struct PullOutTank
 /// and lets everything settle. Throws as fill_tank_in_layers.
 PullOutTank fill_pull_out_tank(const PullOutTankSpec &spec, const std::function<void(double)> &progress = {});
 
+/// The steps the fill took: each layer's growth and settling, then the settling with the sheet
+/// freed (the cost of a fill in steps; the system's own step count restarts with each lift).
+std::uint64_t fill_steps(const PullOutTank &tank);
+
+/// Of fill_steps, those of lifts taken from a lift cache (made by an earlier run).
+std::uint64_t fill_steps_of_kept_lifts(const PullOutTank &tank);
+
 /// What the soil does to the lower part of the sheet: the normal stresses on its top and bottom
 /// faces (sheet_face_stresses over every segment of the lower part that is, wholly or partly,
 /// inside the tank now, over the length inside), the total normal force on both faces, and the

@@ -104,6 +104,14 @@ TEST(HybridPullOut, SmallTankCarriesTheOverburdenThroughTheBandAndPulls)
             << " s)" << std::endl;
   const ParticleBox &box = hybrid.box();
   const dem::PullOutTank &tank = hybrid.particles();
+  // The fill's cost in steps counts every lift of the box (as the dem mode's does), not only the
+  // last lift's system (which restarts its count): the summary's n_fill_steps was that before.
+  ASSERT_GE(tank.tank.layers.size(), 2u);
+  std::uint64_t every_lift = tank.n_final_settling_steps;
+  for (const dem::TankLayer &layer : tank.tank.layers)
+    every_lift += layer.n_growth_steps + layer.n_settling_steps;
+  EXPECT_EQ(s.fill_steps, every_lift);
+  EXPECT_GT(s.fill_steps, tank.tank.system.step_count());
   const dem::SheetLevelStress stress =
     dem::measure_sheet_level_stress(hybrid.particle_system(), tank, box.box_tank.geometry, 0.02);
   const double gamma_H = spec.tank.unit_weight * (spec.tank.geometry.fill_height - (box.y0 + tank.sheet_level));
