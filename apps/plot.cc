@@ -2,9 +2,11 @@
 
 #include "dem/checked_output.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 
 namespace geohybrid::apps
 {
@@ -18,6 +20,23 @@ std::string quoted(const std::string &text)
   for (const char c : text)
     q += c == '\'' ? std::string("''") : std::string(1, c);
   return q + "'";
+}
+
+/// Whether `png` is a whole PNG file: its signature first and its IEND chunk last (the chunk's
+/// type and its fixed CRC). gnuplot exits 0 when the disk fills under its PNG: cairo's failed
+/// writes are not its errors, and the file is left cut short.
+bool png_is_complete(const std::filesystem::path &png)
+{
+  std::ifstream f(png, std::ios::binary);
+  char head[8] = {}, tail[8] = {};
+  if (!f.read(head, 8))
+    return false;
+  f.seekg(-8, std::ios::end);
+  if (!f.read(tail, 8))
+    return false;
+  const char signature[8] = {'\x89', 'P', 'N', 'G', '\r', '\n', '\x1a', '\n'};
+  const char iend[8] = {'I', 'E', 'N', 'D', '\xae', '\x42', '\x60', '\x82'};
+  return std::equal(head, head + 8, signature) && std::equal(tail, tail + 8, iend);
 }
 } // namespace
 
@@ -62,7 +81,12 @@ bool plot_png(const std::filesystem::path &png, const std::string &title, const 
       return false;
     }
   const std::string command = "gnuplot '" + script.string() + "' 2> '" + script.string() + ".log'";
-  if (std::system(command.c_str()) != 0)
+  const int status = std::system(command.c_str());
+  // A PNG begun and cut short is a write that failed (a full disk), whatever gnuplot said: the
+  // run stops there, as for a CSV, rather than ending with a broken figure beside its summary.
+  if (std::filesystem::exists(png) && !png_is_complete(png))
+    throw std::runtime_error(dem::write_failure_message(png));
+  if (status != 0)
     {
       std::cerr << "note: gnuplot failed on " << script.string() << " (see its .log); the CSV results are complete\n";
       return false;

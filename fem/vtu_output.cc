@@ -1,11 +1,43 @@
 #include "vtu_output.h"
 
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/numerics/data_out.h>
 
 #include <cmath>
+#include <fstream>
+#include <functional>
+#include <stdexcept>
+#include <vector>
 
 namespace geohybrid::fem
 {
+namespace
+{
+/// Writes `file` with `write`; throws std::runtime_error naming it if it cannot be opened or a
+/// write fails (deal.II's writers throw ExcIO at the first failed write; the flush catches the
+/// failure of what its buffer still holds).
+void write_checked(const std::string &file, const std::function<void(std::ostream &)> &write)
+{
+  const std::string failure = "cannot write " + file + " (is the disk full, or the directory not writable?)";
+  std::ofstream out(file);
+  if (!out)
+    throw std::runtime_error(failure);
+  try
+    {
+      write(out);
+    }
+  catch (const dealii::ExceptionBase &)
+    {
+      throw std::runtime_error(failure);
+    }
+  out.flush();
+  if (!out)
+    throw std::runtime_error(failure);
+}
+} // namespace
+
 std::string write_soil_vtu(const DisplacementSpace &space, const dealii::PETScWrappers::MPI::Vector &displacement,
                            MaterialPointHistory &material_points, const std::string &directory,
                            const std::string &basename, unsigned int step)
@@ -55,6 +87,23 @@ std::string write_soil_vtu(const DisplacementSpace &space, const dealii::PETScWr
   data_out.add_data_vector(rank, "mpi_rank");
   // Curved cells (Q2 mapping) are subdivided so that ParaView shows their curvature.
   data_out.build_patches(space.mapping(), space.degree(), dealii::DataOut<dim>::curved_inner_cells);
-  return data_out.write_vtu_with_pvtu_record(directory + "/", basename, step, space.communicator(), 4);
+  // Each rank its piece, rank 0 the record listing them: the files and names of deal.II's
+  // write_vtu_with_pvtu_record (one file per rank), but through streams checked here, so that a
+  // failed write (a full disk) stops the run with one error naming the file, not deal.II's ExcIO
+  // and its stack trace.
+  const unsigned int this_rank = dealii::Utilities::MPI::this_mpi_process(space.communicator());
+  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(space.communicator());
+  const std::string stem = basename + "_" + dealii::Utilities::int_to_string(step, 4);
+  const auto piece = [&](unsigned int r) { return stem + "." + dealii::Utilities::int_to_string(r) + ".vtu"; };
+  write_checked(directory + "/" + piece(this_rank), [&](std::ostream &out) { data_out.write_vtu(out); });
+  const std::string record = stem + ".pvtu";
+  if (this_rank == 0)
+    {
+      std::vector<std::string> pieces;
+      for (unsigned int r = 0; r < n_ranks; ++r)
+        pieces.push_back(piece(r));
+      write_checked(directory + "/" + record, [&](std::ostream &out) { data_out.write_pvtu_record(out, pieces); });
+    }
+  return record;
 }
 } // namespace geohybrid::fem

@@ -14,6 +14,7 @@ namespace geohybrid::fem
 {
 /// Writes `directory/basename_NNNN.R.vtu` per rank and `directory/basename_NNNN.pvtu`; returns the
 /// PVTU file name (without the directory). `displacement` must have ghost entries. Collective.
+/// Throws std::runtime_error naming the file if a write fails (a full disk).
 std::string write_soil_vtu(const DisplacementSpace &space, const dealii::PETScWrappers::MPI::Vector &displacement,
                            MaterialPointHistory &material_points, const std::string &directory,
                            const std::string &basename, unsigned int step);

@@ -15,6 +15,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -118,4 +120,106 @@ TEST(FullDiskCommands, SweepStopsAtItsTable)
   const int status = geohybrid::testing::run_geohybrid({"sweep", input}, d / "sweep.log");
   expect_stopped_at(status, d / "sweep.log", out / "sweep.csv", out);
   EXPECT_TRUE(fs::exists(out / "L_0.3" / "summary.json")) << read_text(d / "sweep.log"); // the members finished
+}
+
+// The fem pull-out of sweep_test_inputs.h (about a second): its files but one are written before
+// pullout_curve.png, and summary.json after it. gnuplot, the program's child, inherits the limit:
+// cairo's writes fail under it, and gnuplot exited 0 with the PNG cut short, so the run ended
+// with status 0 and a summary.json beside a broken figure. The limit is set halfway between the
+// largest other file and the whole PNG of a first run without one, so that only the PNG meets it.
+TEST(FullDiskCommands, FemPulloutStopsAtItsPlot)
+{
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "no gnuplot: no PNG is written";
+  const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
+  const fs::path d = directory.path, whole = d / "base_out", out = d / "cut";
+  const std::string input = geohybrid::testing::write_fem_base_input(d);
+  ASSERT_EQ(geohybrid::testing::run_geohybrid({"pullout", input}, d / "whole.log"), 0) << read_text(d / "whole.log");
+  std::uintmax_t largest_other = 0;
+  for (const auto &entry : fs::directory_iterator(whole))
+    if (entry.path().filename() != "pullout_curve.png")
+      largest_other = std::max(largest_other, fs::file_size(entry.path()));
+  const std::uintmax_t png = fs::file_size(whole / "pullout_curve.png");
+  ASSERT_GT(png, largest_other + 256) << "the PNG must be the largest file for the limit to pick it";
+  std::string cut_input = read_text(input);
+  cut_input.replace(cut_input.find(whole.string()), whole.string().size(), out.string());
+  std::ofstream(d / "cut.prm") << cut_input;
+  const int status = geohybrid::testing::run_geohybrid_with_file_size_limit(
+    {"pullout", (d / "cut.prm").string()}, d / "cut.log", static_cast<std::size_t>((largest_other + png) / 2));
+  expect_stopped_at(status, d / "cut.log", out / "pullout_curve.png", out);
+}
+
+// The same fem pull-out on a finer mesh with a snapshot every mm: the second snapshot's piece
+// (snapshots/pullout_0001.0.vtu) is the largest file, over the limit set halfway between it and
+// the largest other file of a first run without one. deal.II's writer threw its ExcIO with a stack
+// trace and no file named; now one error names the piece.
+TEST(FullDiskCommands, FemPulloutStopsAtASnapshot)
+{
+  const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
+  const fs::path d = directory.path, whole = d / "base_out", out = d / "cut";
+  const std::string base = read_text(geohybrid::testing::write_fem_base_input(d));
+  const auto input_into = [&](const fs::path &output, const fs::path &file) {
+    std::string text = base;
+    text.replace(text.find(whole.string()), whole.string().size(), output.string());
+    const std::string cells = "set cell size = 0.05";
+    text.replace(text.find(cells), cells.size(), "set cell size = 0.025\n  set snapshot interval = 0.001");
+    std::ofstream(file) << text;
+    return file.string();
+  };
+  ASSERT_EQ(geohybrid::testing::run_geohybrid({"pullout", input_into(whole, d / "whole.prm")}, d / "whole.log"), 0)
+    << read_text(d / "whole.log");
+  const fs::path piece = fs::path("snapshots") / "pullout_0001.0.vtu";
+  std::uintmax_t largest_other = 0;
+  for (const auto &entry : fs::recursive_directory_iterator(whole))
+    if (entry.is_regular_file() && entry.path().filename().string().rfind("pullout_000", 0) != 0)
+      largest_other = std::max(largest_other, fs::file_size(entry.path()));
+  largest_other = std::max(largest_other, fs::file_size(whole / "snapshots" / "pullout_0000.0.vtu"));
+  const std::uintmax_t vtu = fs::file_size(whole / piece);
+  ASSERT_GT(vtu, largest_other + 256) << "the second snapshot must be the largest file before it";
+  const int status = geohybrid::testing::run_geohybrid_with_file_size_limit(
+    {"pullout", input_into(out, d / "cut.prm")}, d / "cut.log", static_cast<std::size_t>((largest_other + vtu) / 2));
+  expect_stopped_at(status, d / "cut.log", out / piece, out);
+}
+
+// A fem design (sweep_test_inputs.h's base input, three values of L): its members and its table
+// are written, then its figure, design.png, the largest of its files: the limit, halfway between
+// it and the next largest of a first run without one, stops the design there, naming it, with no
+// summary.json that gives an answer. (design.csv on /dev/full cannot be tried: a design refuses a
+// directory that holds another run's table.)
+TEST(FullDiskCommands, DesignStopsAtItsFigure)
+{
+  const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
+  const fs::path d = directory.path, whole = d / "whole", out = d / "cut";
+  geohybrid::testing::write_fem_base_input(d);
+  const auto design_into = [&](const fs::path &output, const std::string &name) {
+    std::ofstream(d / name) << "set base input = base.prm\nset output directory = " << output.string() << "\n"
+                            << "subsection Design\n  set entry = L\n  set minimum = 0.1\n  set maximum = 0.5\n"
+                            << "  set target T_max = 3\n  set tolerance = 0.39\nend\n";
+    return (d / name).string();
+  };
+  ASSERT_EQ(geohybrid::testing::run_geohybrid({"design", design_into(whole, "whole.prm")}, d / "whole.log"), 0)
+    << read_text(d / "whole.log");
+  std::uintmax_t largest_other = 0;
+  for (const auto &entry : fs::recursive_directory_iterator(whole))
+    if (entry.is_regular_file() && entry.path() != whole / "design.png")
+      largest_other = std::max(largest_other, fs::file_size(entry.path()));
+  const std::uintmax_t png = fs::file_size(whole / "design.png");
+  ASSERT_GT(png, largest_other + 256) << "the design's figure must be its largest file for the limit to pick it";
+  const int status = geohybrid::testing::run_geohybrid_with_file_size_limit(
+    {"design", design_into(out, "cut.prm")}, d / "cut.log", static_cast<std::size_t>((largest_other + png) / 2));
+  expect_stopped_at(status, d / "cut.log", out / "design.png", out);
+}
+
+// The report of a finished fem run: the page inlines the run's PNG (some 20 KB), so it outgrows a
+// limit of 8 KB. One error names the page; a page cut short would look like a report whose last
+// sections are missing.
+TEST(FullDiskCommands, ReportStopsAtItsPage)
+{
+  const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
+  const fs::path d = directory.path, run = d / "base_out", page = d / "page" / "report.html";
+  const std::string input = geohybrid::testing::write_fem_base_input(d);
+  ASSERT_EQ(geohybrid::testing::run_geohybrid({"pullout", input}, d / "run.log"), 0) << read_text(d / "run.log");
+  const int status = geohybrid::testing::run_geohybrid_with_file_size_limit(
+    {"report", run.string(), "--output", page.string()}, d / "report.log", 8 << 10);
+  expect_stopped_at(status, d / "report.log", page, page.parent_path());
 }
