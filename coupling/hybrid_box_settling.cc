@@ -45,7 +45,7 @@ OverburdenSettling settle_under_overburden(dem::DemSystem &particles, std::size_
   dem::ContactParameters frictionless = lid.law.parameters();
   frictionless.friction_angle_deg = 0.0; // a surcharge, as an air bag, carries no shear
   lid.law = dem::LinearContactLaw(frictionless);
-  lid.translate(Vec2(0.0, top - lid.start.y()));
+  lid.translate(dem::Vec2(0.0, top - lid.start.y()));
   lid.control = dem::WallControl::servo_stress;
   lid.servo = dem::WallServo{};
   lid.servo.target_stress = stress;
@@ -68,9 +68,9 @@ OverburdenSettling settle_under_overburden(dem::DemSystem &particles, std::size_
   dem::Wall &done = particles.walls()[lid_index];
   const double surface = done.start.y();
   done.control = dem::WallControl::prescribed_velocity;
-  done.velocity = Vec2::Zero();
+  done.velocity = dem::Vec2::Zero();
   done.law = law_while_filling;
-  done.translate(Vec2(0.0, parked_at - done.start.y()));
+  done.translate(dem::Vec2(0.0, parked_at - done.start.y()));
   particles.request_neighbour_rebuild();
   return {steps, reached, surface};
 }
