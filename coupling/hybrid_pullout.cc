@@ -1,129 +1,19 @@
 #include "hybrid_pullout.h"
 
+#include "coupling/hybrid_box_settling.h"
+#include "coupling/hybrid_continuum.h"
 #include "dem/measurements.h"
 #include "fem/constitutive/parameter_check.h"
-
-#include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/tria.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
-#include <limits>
-#include <set>
-#include <tuple>
 #include <sstream>
 #include <stdexcept>
 
 namespace geohybrid::coupling
 {
-namespace
-{
-/// Mesh steps over [a, b]: `cell` [m] at most, growing by `growth` per cell away from the fine end(s)
-/// up to `far_cell`, scaled to fit exactly. `fine_at_start`, `fine_at_end`: where the band is.
-std::vector<double> graded_steps(double a, double b, double cell, double far_cell, bool fine_at_start, bool fine_at_end)
-{
-  const double length = b - a;
-  if (length <= 1e-12)
-    return {};
-  constexpr double growth = 1.3;
-  std::vector<double> steps;
-  if (!fine_at_start && !fine_at_end)
-    {
-      const auto n = static_cast<unsigned int>(std::ceil(length / far_cell - 1e-9));
-      return std::vector<double>(n, length / n);
-    }
-  if (fine_at_start && fine_at_end)
-    {
-      std::vector<double> half = graded_steps(a, a + 0.5 * length, cell, far_cell, true, false);
-      steps = half;
-      steps.insert(steps.end(), half.rbegin(), half.rend());
-      return steps;
-    }
-  // From the fine end: cell, cell g, cell g^2, ... capped at far_cell, until the interval is
-  // covered; then all scaled down to fit (none grows past its cap).
-  double covered = 0.0, h = cell;
-  while (covered < length - 1e-12)
-    {
-      steps.push_back(h);
-      covered += h;
-      h = std::min(far_cell, h * growth);
-    }
-  for (double &step : steps)
-    step *= length / covered;
-  if (fine_at_end)
-    std::reverse(steps.begin(), steps.end());
-  return steps;
-}
-/// Steps the particles 200 at a time until `at_rest()` (checked after each 200); returns the
-/// steps taken. Throws std::runtime_error with `failure()` past `max_steps`.
-std::uint64_t step_until(dem::DemSystem &particles, const std::function<bool()> &at_rest, std::uint64_t max_steps,
-                         const std::function<std::string()> &failure)
-{
-  std::uint64_t steps = 0;
-  do
-    {
-      if (steps >= max_steps)
-        throw std::runtime_error(failure());
-      for (int k = 0; k < 200; ++k)
-        particles.step();
-      steps += 200;
-    }
-  while (!at_rest());
-  return steps;
-}
-
-/// Loads the top of the filled particle box with `stress` [Pa] through its lid (parked above the
-/// fill: brought down onto the highest grain, frictionless, servo-controlled) until the lid's
-/// stress is within 1 % of it and the unbalanced-force ratio below `target`, then parks the lid
-/// above the fill again with its law. Returns the steps taken, the lid's last stress and its
-/// height then (the box's top surface, in the box's frame) [-, Pa, m].
-std::tuple<std::uint64_t, double, double> settle_under_overburden(dem::DemSystem &particles, std::size_t lid_index, double stress,
-                                                         double target, std::uint64_t max_steps,
-                                                         const std::string &where)
-{
-  const dem::ParticleSet &p = particles.particles();
-  double top = -std::numeric_limits<double>::infinity();
-  for (std::size_t d = 0; d < p.n_discs_total(); ++d)
-    top = std::max(top, p.disc_y[d] + p.disc_radius[d]);
-  dem::Wall &lid = particles.walls()[lid_index];
-  const double parked_at = lid.start.y();
-  const dem::LinearContactLaw law_while_filling = lid.law;
-  dem::ContactParameters frictionless = lid.law.parameters();
-  frictionless.friction_angle_deg = 0.0; // a surcharge, as an air bag, carries no shear
-  lid.law = dem::LinearContactLaw(frictionless);
-  lid.translate(Vec2(0.0, top - lid.start.y()));
-  lid.control = dem::WallControl::servo_stress;
-  lid.servo = dem::WallServo{};
-  lid.servo.target_stress = stress;
-  // The speed a lid may approach at: a hundredth of a grain's radius per step at most.
-  lid.servo.max_speed = 0.01 * *std::min_element(p.disc_radius.begin(), p.disc_radius.end()) / particles.time_step();
-  particles.request_neighbour_rebuild();
-  const auto lid_stress = [&] { return particles.walls()[lid_index].normal_stress(); };
-  const std::uint64_t steps = step_until(
-    particles,
-    [&] { return std::abs(lid_stress() - stress) < 0.01 * stress && dem::unbalanced_force_ratio(particles) < target; },
-    max_steps,
-    [&] {
-      std::ostringstream message;
-      message << where << ": the particle box did not settle under its overburden of " << stress << " Pa in "
-              << max_steps << " steps (the lid at " << lid_stress() << " Pa, unbalanced-force ratio "
-              << dem::unbalanced_force_ratio(particles) << ", target " << target << ")";
-      return message.str();
-    });
-  const double reached = lid_stress();
-  dem::Wall &done = particles.walls()[lid_index];
-  const double surface = done.start.y();
-  done.control = dem::WallControl::prescribed_velocity;
-  done.velocity = Vec2::Zero();
-  done.law = law_while_filling;
-  done.translate(Vec2(0.0, parked_at - done.start.y()));
-  particles.request_neighbour_rebuild();
-  return {steps, reached, surface};
-}
-} // namespace
-
 void HybridRegionSpec::validate(const std::string &where) const
 {
   fem::require_parameter(margin > 0.0 && std::isfinite(margin), where, "Hybrid/DEM region margin", margin, "must be positive [m]");
@@ -264,20 +154,21 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
   // The box's top surface (box frame): where the lid settled under the overburden, else the
   // highest grain's top. Method 3's continuum starts there, on the grains, not at the lift's top
   // above them (a gap the continuum would fall through: 1.8 mm measured on the test tank).
-  double top_surface = -std::numeric_limits<double>::infinity();
-  for (std::size_t d = 0; d < p.n_discs_total(); ++d)
-    top_surface = std::max(top_surface, p.disc_y[d] + p.disc_radius[d]);
+  double top_surface = highest_grain_top(p);
   using Clock = std::chrono::steady_clock;
   const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   const Clock::time_point box_settling_start = Clock::now();
   if (spec.region.fill_under_overburden && box_.top_shared)
     {
       set_up_.overburden = spec.tank.unit_weight * (g.fill_height - box_.y1);
-      std::tie(set_up_.box_settling_steps, set_up_.overburden_reached, top_surface) = settle_under_overburden(
+      const OverburdenSettling settled = settle_under_overburden(
         particles, tank_->tank.walls.lid, set_up_.overburden, fill_ratio, spec.max_settling_steps, where);
+      set_up_.box_settling_steps = settled.steps;
+      set_up_.overburden_reached = settled.stress_reached;
+      top_surface = settled.top_surface;
     }
   else if (crossing)
-    set_up_.box_settling_steps = step_until(
+    set_up_.box_settling_steps = step_particles_until(
       particles, [&] { return dem::unbalanced_force_ratio(particles) < fill_ratio; }, spec.max_settling_steps,
       [&] { return where + ": the particle box did not settle after its sheet was cut"; });
   set_up_.box_settling_wall_time = seconds_since(box_settling_start);
@@ -329,79 +220,12 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
         }
     }
 
-  // The continuum's mesh: the tank in the box's frame, mesh lines on the core's and the band's
-  // edges, the core's cells removed.
-  const double tank_x0 = -box_.x0, tank_x1 = g.tank_length - box_.x0;
-  const double tank_y0 = -box_.y0, tank_y1 = g.fill_height - box_.y0;
-  // Cells of `cell` in the band and over the DEM core's span, growing to `far` away from them.
+  // The continuum: the tank's mesh with lines on the core's and the band's edges, the core's cells
+  // removed, its soil at the geostatic stress (hybrid_continuum.h).
   const double far = spec.region.far_cell_size > 0.0 ? spec.region.far_cell_size : 4.0 * cell;
-  std::vector<double> x_steps, y_steps;
-  const auto append = [](std::vector<double> &to, const std::vector<double> &steps) {
-    to.insert(to.end(), steps.begin(), steps.end());
-  };
-  // Uniform cells over the band and the core (each interval divided evenly, so that the band's
-  // and the core's edges lie on mesh lines), graded outside them.
-  const auto uniform = [&](std::vector<double> &to, const std::vector<double> &breakpoints) {
-    for (std::size_t k = 1; k < breakpoints.size(); ++k)
-      append(to, graded_steps(breakpoints[k - 1], breakpoints[k], cell, cell, false, false));
-  };
-  if (box_.left_shared)
-    {
-      append(x_steps, graded_steps(tank_x0, cx0 - w, cell, far, false, true));
-      uniform(x_steps, {cx0 - w, cx0, tank_x1});
-    }
-  else
-    uniform(x_steps, {tank_x0, tank_x1});
-  std::vector<double> core_lines;
-  if (box_.bottom_shared)
-    {
-      append(y_steps, graded_steps(tank_y0, cy0 - w, cell, far, false, true));
-      core_lines = {cy0 - w, cy0};
-    }
-  else
-    core_lines = {tank_y0};
-  if (box_.top_shared)
-    core_lines.insert(core_lines.end(), {cy1, cy1 + w});
-  else
-    core_lines.push_back(tank_y1);
-  uniform(y_steps, core_lines);
-  if (box_.top_shared)
-    append(y_steps, graded_steps(cy1 + w, tank_y1, cell, far, true, false));
-  dealii::Triangulation<fem::dim> tank_mesh;
-  dealii::GridGenerator::subdivided_hyper_rectangle(tank_mesh, {x_steps, y_steps},
-                                                    dealii::Point<fem::dim>(tank_x0, tank_y0),
-                                                    dealii::Point<fem::dim>(tank_x1, tank_y1), true);
-  // One rank: the continuum on MPI_COMM_SELF (several runs may share an MPI job, one a rank).
-  mesh_ = continuum_region_mesh(tank_mesh, *band_, MPI_COMM_SELF);
+  mesh_ = hybrid_continuum_mesh(box_, g, {cx0, cy0, cx1, cy1}, *band_, w, cell, far);
   set_up_.n_cells = mesh_->n_global_active_cells();
-
-  // The continuum: smooth back and front walls (ids 0 and 1 of the colorized rectangle), fixed
-  // base (2), free top (3); only the walls it reaches.
-  std::set<dealii::types::boundary_id> ids;
-  for (const auto &face : mesh_->active_face_iterators())
-    if (face->at_boundary())
-      ids.insert(face->boundary_id());
-  fem::BoundaryConditions conditions;
-  if (ids.count(0))
-    conditions.displacements.push_back({0, true, false, nullptr});
-  if (ids.count(1))
-    conditions.displacements.push_back({1, true, false, nullptr});
-  if (ids.count(2))
-    conditions.displacements.push_back({2, true, true, nullptr});
-  const double gravity = spec.tank.filling.gravity;
-  fem::ExplicitSettings settings;
-  settings.element_degree = 1;
-  settings.density = spec.tank.unit_weight / gravity;
-  settings.gravity[1] = -gravity;
-  settings.damping.local = spec.continuum.local_damping;
-  settings.n_threads = static_cast<unsigned int>(std::max(1, spec.tank.filling.n_threads)); // the particles' threads
-  const fem::SoilModel soil(spec.continuum.soil);
-  continuum_ = std::make_unique<fem::ExplicitSolver>(*mesh_, soil, conditions, settings);
-  fem::GeostaticStress geostatic;
-  geostatic.surface_elevation = tank_y1;
-  geostatic.unit_weight = spec.tank.unit_weight;
-  geostatic.k0 = spec.continuum.k0 > 0.0 ? spec.continuum.k0 : soil.default_k0();
-  continuum_->set_initial_stress(geostatic);
+  continuum_ = hybrid_continuum_solver(*mesh_, spec, box_);
   if (crossing)
     {
       // The sheet's part in the continuum, its mass scaled as the particles' part is, or more if
@@ -462,9 +286,10 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
   // unbalanced-force ratio, and for at least the time a P-wave takes to cross the tank ten times
   // (the particles were at rest under their own weight alone: their ratio starts low).
   const double target = spec.tank.filling.equilibrium_unbalanced_ratio;
-  const fem::IsotropicElasticity &elasticity = soil.elasticity();
+  const fem::IsotropicElasticity &elasticity = continuum_->soil().elasticity();
   const double p_wave_modulus = elasticity.lame_lambda() + 2.0 * elasticity.shear_modulus();
-  const double wave_crossing = std::max(g.fill_height, g.tank_length) / std::sqrt(p_wave_modulus / settings.density);
+  const double wave_crossing =
+    std::max(g.fill_height, g.tank_length) / std::sqrt(p_wave_modulus / continuum_->settings().density);
   const auto min_steps = static_cast<std::uint64_t>(10.0 * wave_crossing / stepper_->time_step());
   const Clock::time_point coupled_settling_start = Clock::now();
   for (;;)

@@ -20,14 +20,16 @@
 //   wall keeps that wall, the others are shared with the continuum. The box is filled in lifts as
 //   the DEM tank is (dem/tank_filling.h), its walls where the tank's are and temporary walls on
 //   its shared sides, with as many particles as the whole tank would have in its area (the same
-//   grain size); the sheet is laid on the lift at its depth. Its lifts: particle_box.h.
+//   grain size); the sheet is laid on the lift at its depth. Its lifts: particle_box.h. Once
+//   filled, and before the coupling, the box settles on its own: under the overburden through
+//   its lid, or after its sheet was cut (hybrid_box_settling.h).
 // - Method 3 (InterfaceCoupling) has no band: the DEM core is the box, the continuum's mesh the
 //   tank without it, its hole's edges the deformable walls the grains touch with their own contact
 //   law (frictional, no bonds); the hole's top is the box's settled top surface (where the lid
 //   stood under the overburden), not the lift's top above the grains. No sheet crossing with it.
 // - Methods 1 and 2: the DEM core is the box less, on each shared side, a pad of one branch length (the longest
 //   contact between two bodies: the driven particles of coupled_stepper.h) and the band (width w).
-//   The continuum's mesh is the tank's with the core's cells removed (continuum_region.h); the
+//   The continuum's mesh is the tank's with the core's cells removed (hybrid_continuum.h); the
 //   core's and the band's edges lie on mesh lines, the cells are uniform over the band and the
 //   core's span and grow away from them (the continuum runs at the particles' step: its cells
 //   cost as much as the particles on a uniform mesh). It starts at the geostatic stress of the whole

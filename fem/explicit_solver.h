@@ -221,6 +221,10 @@ private:
     std::vector<double> JxW;                       ///< per quadrature point
     std::vector<dealii::Tensor<1, dim>> gradients; ///< [q * n_scalar + j]
   };
+  /// What the steps need from the mesh, the soil and the energy weights: the lumped mass and body
+  /// force, the cell cache, the stable step (refusing a user step above it, naming `where` and
+  /// `what_mesh`), and the forces at the current state. From the constructor and set_energy_weight.
+  void prepare_steps(const std::string &where, const std::string &what_mesh);
   void build_cell_cache();
   /// w at the quadrature points of `fe_values` (1 without energy weights).
   double energy_weight_at(const dealii::FEValues<dim> &fe_values, unsigned int q) const;

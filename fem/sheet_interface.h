@@ -47,15 +47,16 @@
 // at the path's start, as the small-slip tie did.
 //
 // The sheet is replicated on every MPI rank (hundreds of nodes), and so are the s_k: every rank
-// follows every node's point from cell to neighbouring cell (no global search in a step; the
-// walk crosses artificial cells too, whose geometry every rank has), the rank that owns the cell
-// (for a point on cell edges, the cell with the smallest CellId) computes the node's interface
-// force and new s_k, and one MPI sum per step shares them; every rank then integrates the sheet's
-// nodes identically. The owner of a node changes with its cell, and does not depend on the
-// partition.
+// follows every node's point from cell to neighbouring cell (sheet_soil_cells.h: no global search
+// in a step; the walk crosses artificial cells too, whose geometry every rank has), the rank that
+// owns the cell (for a point on cell edges, the cell with the smallest CellId) computes the
+// node's interface force and new s_k, and one MPI sum per step shares them; every rank then
+// integrates the sheet's nodes identically. The owner of a node changes with its cell, and does
+// not depend on the partition.
 #include "fem/displacement_space.h"
 #include "fem/material_point_history.h"
 #include "fem/sheet_path.h"
+#include "fem/sheet_soil_cells.h"
 #include "fem/truss_sheet.h"
 
 #include <deal.II/lac/la_parallel_vector.h>
@@ -66,31 +67,6 @@
 
 namespace geohybrid::fem
 {
-/// Where a sheet node sits in the soil, on the rank that computes its interface: the soil cell,
-/// the soil's shape functions there, and the cell's DoFs (small slip: the implicit solver,
-/// implicit_sheet.h).
-struct SheetSoilPoint
-{
-  bool owned = false; ///< this rank computes the node's interface
-  dealii::DoFHandler<dim>::active_cell_iterator cell;
-  std::vector<double> shape_values;                       ///< N_i(X_k) of the cell's DoFs
-  std::vector<unsigned int> components;                   ///< the component of each cell DoF
-  std::vector<dealii::types::global_dof_index> dof_indices;
-};
-
-/// Locates every node of `sheet` in `space`'s mesh. A node on a cell edge or vertex touches
-/// several cells, and the soil stress (sigma_nn) is that of one of them: the one with the smallest
-/// CellId, whatever the partition, and its owner takes the node, so that results do not depend
-/// on the number of ranks. Throws std::invalid_argument naming `where` if a node lies outside the
-/// mesh. Collective.
-std::vector<SheetSoilPoint> locate_sheet_in_soil(const DisplacementSpace &space, const TrussSheet &sheet,
-                                                 const std::string &where);
-
-/// The soil's normal stress n.sigma.n on the sheet's plane at a node: the mean over the committed
-/// stresses of the quadrature points of its cell (tension positive) [Pa].
-double sheet_normal_stress(MaterialPointHistory &material_points, const SheetSoilPoint &point,
-                           const dealii::Tensor<1, dim> &normal);
-
 /// The soil point a node of the explicit sheet has slid to: its arc length on the reference path,
 /// the cell holding it (on every rank: it may be a ghost or artificial cell here), and, on the
 /// rank that computes its interface, the shape functions there, the cell's DoFs and material

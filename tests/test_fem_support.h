@@ -124,6 +124,32 @@ struct Layer
   }
 };
 
+/// A load of `pressure` on the top face for x < `width`.
+class StripPressure : public dealii::Function<dim>
+{
+public:
+  StripPressure(double pressure, double width) : dealii::Function<dim>(1), pressure_(pressure), width_(width) {}
+  double value(const Point<dim> &x, unsigned int) const override { return x[0] < width_ ? pressure_ : 0.0; }
+
+private:
+  double pressure_, width_;
+};
+
+/// The layer's mesh: `nx_q1` x nx_q1 / 2 Q1 cells, or half as many Q2 cells (the same nodes).
+inline void make_layer_mesh(Mesh &mesh, const Layer &layer, unsigned int degree, unsigned int nx_q1)
+{
+  const unsigned int nx = degree == 1 ? nx_q1 : nx_q1 / 2;
+  make_rectangle(mesh, nx, nx / 2, Point<dim>(0, 0), Point<dim>(layer.width, layer.height));
+}
+
+/// The layer's supports with `pressure` on the top face over x < 0.5 m [Pa].
+inline BoundaryConditions strip_loaded_layer(const Layer &layer, double pressure)
+{
+  BoundaryConditions bc = layer.supports();
+  bc.pressures = {{top, std::make_shared<StripPressure>(pressure, 0.5)}};
+  return bc;
+}
+
 /// A 0.6 m x 0.4 m tank of 12 x 8 cells, elastic soil (E = 20 MPa, nu = 0.3, K0 = nu / (1 - nu))
 /// of 15.2 kN/m^3 under 30 kPa, the sheet over the whole length (L = 0.6 m, from the front wall
 /// to the back wall) at H = 0.225 m, in the middle of a row of cells. With smooth walls at both of
