@@ -1,8 +1,8 @@
 #pragma once
 // `geohybrid biaxial FILE.prm`: a REDF sample sheared in biaxial compression at several
 // confining stresses, and the macroscopic parameters read from the curves.
-#include "dem/biaxial_test.h"
-#include "dem/sample_preparation.h"
+#include "dem/laboratory/biaxial_test.h"
+#include "dem/laboratory/sample_preparation.h"
 
 #include <deal.II/base/parameter_handler.h>
 
