@@ -19,6 +19,7 @@
 #include "dem/dem_system.h"
 #include "dem/io/checked_output.h"
 #include "dem/io/checkpoint.h"
+#include "dem/io/particle_csv.h"
 #include "dem/io/snapshot_writer.h"
 #include "dem/laboratory/packing.h"
 #include "dem/measurements.h"

@@ -9,6 +9,7 @@
 // The DEM's text files (a particle CSV) are checked as every command's (dem/io/checked_output.h).
 #include "dem/dem_system.h"
 #include "dem/io/checkpoint.h"
+#include "dem/io/particle_csv.h"
 #include "dem/io/snapshot_writer.h"
 #include "dem/laboratory/packing.h"
 

@@ -1,11 +1,10 @@
 #pragma once
-// Making particle sets: a loose lattice for gravity deposition, reading/writing the particle
-// CSV format of `geohybrid dem` (x, y, radius, vx, vy, omega, optional cluster_id), and the size
-// distribution of generated samples.
+// Making particle sets: a loose lattice for gravity deposition, the deterministic random numbers
+// samples are drawn with, and the size distribution of generated samples. (Particle CSV files are
+// read and written in dem/io/particle_csv.h.)
 #include "dem/particles.h"
 
 #include <cstdint>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -36,17 +35,6 @@ struct LooseLatticeSpec
 ParticleSet make_loose_lattice(const LooseLatticeSpec &spec);
 /// Top of the lattice that make_loose_lattice() builds [m].
 double loose_lattice_height(const LooseLatticeSpec &spec);
-
-/// Reads particles from CSV. Rows sharing a cluster_id >= 0 form one rigid two-disc cluster.
-/// Throws std::runtime_error naming the file and line for a malformed row, a non-positive radius,
-/// a cluster of more than two discs, or two particles overlapping by more than
-/// `overlap_tolerance` times the smaller radius.
-ParticleSet read_particle_csv(const std::filesystem::path &file, double density, double overlap_tolerance);
-
-/// Writes the particle CSV (one row per disc, cluster_id = body id for clusters, -1 for discs),
-/// the format read_particle_csv() reads. Throws std::runtime_error naming the file if a write
-/// fails (dem/io/checked_output.h).
-void write_particle_csv(const ParticleSet &particles, const std::filesystem::path &file);
 
 /// Deterministic uniform number in [0, 1) from a 64-bit generator state (SplitMix64), so that
 /// samples do not depend on the standard library's distributions.
