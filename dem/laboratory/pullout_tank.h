@@ -31,6 +31,10 @@
 // over the lift at that level (levelled as the one under the lower part) and held, with the
 // return, until the tank is full. The layers must put a boundary at both levels. Walls have the
 // wall friction (28 degrees in the paper, measured) and the soil's stiffness.
+//
+// The implementation, split by idea: pullout_tank.cc (the checks, the filling spec, the fill),
+// pullout_tank_sheet_forces.cc (the head tension and its parts, the stresses on the sheet),
+// pullout_tank_pull.cc (the pull) and pullout_tank_checkpoint.cc (a pull-out in a checkpoint).
 #include "dem/io/checkpoint.h"
 #include "tank_filling.h"
 
