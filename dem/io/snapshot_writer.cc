@@ -1,15 +1,16 @@
+// SnapshotWriter: the HDF5 file of the snapshots and the .xdmf that lists them. What a snapshot
+// holds is gathered in snapshot_contents.cc, its XDMF text written in snapshot_xdmf.cc.
 #include "snapshot_writer.h"
 
 #include "hdf5_handles.h"
 #include "hdf5_writable_file.h"
+#include "snapshot_contents.h"
+#include "snapshot_xdmf.h"
 
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
-#include <locale>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
@@ -23,6 +24,9 @@ using hdf5::create_group;
 using hdf5::Handle;
 using hdf5::write_attribute;
 using hdf5::write_dataset;
+using snapshot_detail::ContactLines;
+using snapshot_detail::SheetGeometry;
+using snapshot_detail::SnapshotCounts;
 
 /// How failures name the file: "DEM snapshot file '...'".
 std::string describe(const std::filesystem::path &file) { return "DEM snapshot file '" + file.string() + "'"; }
@@ -61,138 +65,6 @@ void write_count(hid_t parent, const char *name, std::uint64_t value, const std:
   write_attribute(parent, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, &value, where);
 }
 
-// ---- data of one snapshot -----------------------------------------------------------------------
-
-/// Lines of a contact network: two points per line and the values attached to each line.
-struct ContactLines
-{
-  std::vector<double> points;                 // 2m x 3
-  std::vector<std::int64_t> connectivity;     // m x 2
-  std::vector<double> normal_force, tangential_force, force_magnitude;
-  std::vector<std::int32_t> bonded, wall_index;
-
-  std::size_t size() const { return normal_force.size(); }
-
-  void add(const Vec2 &a, const Vec2 &b, double fn, double ft, double fx, double fy, bool is_bonded)
-  {
-    const auto first = static_cast<std::int64_t>(points.size() / 3);
-    points.insert(points.end(), {a.x(), a.y(), 0.0, b.x(), b.y(), 0.0});
-    connectivity.insert(connectivity.end(), {first, first + 1});
-    normal_force.push_back(fn);
-    tangential_force.push_back(ft);
-    force_magnitude.push_back(std::hypot(fx, fy));
-    bonded.push_back(is_bonded ? 1 : 0);
-  }
-};
-
-double value_or_zero(const SoaVector<double> &v, std::size_t q) { return q < v.size() ? v[q] : 0.0; }
-
-ContactLines pair_lines(const DemSystem &system)
-{
-  const ParticleSet &p = system.particles();
-  const PairContacts &c = system.pair_contacts();
-  ContactLines lines;
-  for (std::size_t q = 0; q < c.size(); ++q)
-    {
-      const ContactState &s = c.state[q];
-      if (!s.touching)
-        continue;
-      const std::uint32_t i = c.disc_i[q], j = c.disc_j[q];
-      lines.add(Vec2(p.disc_x[i], p.disc_y[i]), Vec2(p.disc_x[j], p.disc_y[j]),
-                value_or_zero(c.elastic_normal_force, q), s.tangential_force, value_or_zero(c.force_x, q),
-                value_or_zero(c.force_y, q), s.bonded);
-    }
-  return lines;
-}
-
-ContactLines wall_lines(const DemSystem &system)
-{
-  const ParticleSet &p = system.particles();
-  ContactLines lines;
-  const auto &all = system.wall_contacts();
-  for (std::size_t w = 0; w < all.size() && w < system.walls().size(); ++w)
-    {
-      const Wall &wall = system.walls()[w];
-      const WallContacts &c = all[w];
-      for (std::size_t q = 0; q < c.disc.size(); ++q)
-        {
-          const ContactState &s = c.state[q];
-          if (!s.touching)
-            continue;
-          const std::uint32_t d = c.disc[q];
-          const Vec2 centre(p.disc_x[d], p.disc_y[d]);
-          Vec2 closest;
-          closest_point_on_segment(centre, wall.start, wall.end, closest);
-          lines.add(centre, closest, value_or_zero(c.elastic_normal_force, q), s.tangential_force,
-                    value_or_zero(c.force_x, q), value_or_zero(c.force_y, q), s.bonded);
-          lines.wall_index.push_back(static_cast<std::int32_t>(w));
-        }
-    }
-  return lines;
-}
-
-/// Disc-sheet contacts: lines from the disc centre to the contact's point on the sheet's centre
-/// line; wall_index holds the sheet's index.
-ContactLines sheet_contact_lines(const DemSystem &system)
-{
-  const ParticleSet &p = system.particles();
-  ContactLines lines;
-  const auto &all = system.sheet_contacts();
-  for (std::size_t s = 0; s < all.size() && s < system.sheets().size(); ++s)
-    {
-      const SparSheet &sheet = system.sheets()[s];
-      const SheetContacts &c = all[s];
-      for (std::size_t q = 0; q < c.size(); ++q)
-        {
-          const ContactState &state = c.state[q];
-          if (!state.touching)
-            continue;
-          const std::uint32_t d = c.disc[q];
-          lines.add(Vec2(p.disc_x[d], p.disc_y[d]), point_on_segment(sheet, c.segment[q], value_or_zero(c.position, q)),
-                    value_or_zero(c.elastic_normal_force, q), state.tangential_force, value_or_zero(c.force_x, q),
-                    value_or_zero(c.force_y, q), state.bonded);
-          lines.wall_index.push_back(static_cast<std::int32_t>(s));
-        }
-    }
-  return lines;
-}
-
-/// Every sheet's nodes and segments, concatenated.
-struct SheetGeometry
-{
-  std::vector<double> position, velocity;     // nodes x 3
-  std::vector<std::int32_t> sheet_index;      // per node
-  std::vector<std::int64_t> connectivity;     // segments x 2, into the nodes
-  std::vector<double> tension, strain;        // per segment
-
-  std::size_t n_nodes() const { return sheet_index.size(); }
-  std::size_t n_segments() const { return tension.size(); }
-};
-
-SheetGeometry sheet_geometry(const DemSystem &system)
-{
-  SheetGeometry g;
-  for (std::size_t s = 0; s < system.sheets().size(); ++s)
-    {
-      const SparSheet &sheet = system.sheets()[s];
-      const auto first = static_cast<std::int64_t>(g.n_nodes());
-      for (std::size_t k = 0; k < sheet.n_nodes(); ++k)
-        {
-          g.position.insert(g.position.end(), {sheet.x[k], sheet.y[k], 0.0});
-          g.velocity.insert(g.velocity.end(), {sheet.vx[k], sheet.vy[k], 0.0});
-          g.sheet_index.push_back(static_cast<std::int32_t>(s));
-        }
-      for (std::size_t k = 0; k < sheet.n_segments(); ++k)
-        {
-          g.connectivity.insert(g.connectivity.end(), {first + static_cast<std::int64_t>(k),
-                                                       first + static_cast<std::int64_t>(k) + 1});
-          g.tension.push_back(value_or_zero(sheet.tension, k));
-          g.strain.push_back(sheet.segment_strain(k));
-        }
-    }
-  return g;
-}
-
 void write_lines(hid_t group, const ContactLines &lines, const std::string &where)
 {
   write_doubles(group, "points", lines.points, 3, where);
@@ -203,136 +75,11 @@ void write_lines(hid_t group, const ContactLines &lines, const std::string &wher
   write_int32s(group, "bonded", lines.bonded, where);
 }
 
-// ---- XDMF text ----------------------------------------------------------------------------------
-
-std::string xml_escape(const std::string &s)
-{
-  std::string out;
-  for (char ch : s)
-    switch (ch)
-      {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += ch;
-      }
-  return out;
-}
-
-struct XdmfGridWriter
-{
-  std::ostringstream &out;
-  std::string file_prefix; // "name.h5:/snapshot_000000/"
-
-  void data_item(const std::string &indent, const std::string &dims, const char *number_type, int precision,
-                 const std::string &path)
-  {
-    out << indent << "<DataItem Dimensions=\"" << dims << "\" NumberType=\"" << number_type
-        << "\" Precision=\"" << precision << "\" Format=\"HDF\">" << file_prefix << path << "</DataItem>\n";
-  }
-  void attribute(const char *name, const char *type, const char *centre, const std::string &dims,
-                 const char *number_type, int precision, const std::string &path)
-  {
-    out << "          <Attribute Name=\"" << name << "\" AttributeType=\"" << type << "\" Center=\"" << centre
-        << "\">\n";
-    data_item("            ", dims, number_type, precision, path);
-    out << "          </Attribute>\n";
-  }
-
-  void particles(std::size_t n)
-  {
-    const std::string ns = std::to_string(n), n3 = ns + " 3";
-    out << "        <Grid Name=\"particles\" GridType=\"Uniform\">\n"
-        << "          <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
-        << "\" NodesPerElement=\"1\">\n";
-    data_item("            ", ns, "Int", 8, "particles/connectivity");
-    out << "          </Topology>\n"
-        << "          <Geometry GeometryType=\"XYZ\">\n";
-    data_item("            ", n3, "Float", 8, "particles/position");
-    out << "          </Geometry>\n";
-    attribute("radius", "Scalar", "Node", ns, "Float", 8, "particles/radius");
-    attribute("velocity", "Vector", "Node", n3, "Float", 8, "particles/velocity");
-    attribute("cluster_id", "Scalar", "Node", ns, "Int", 8, "particles/cluster_id");
-    attribute("rotation", "Scalar", "Node", ns, "Float", 8, "particles/rotation");
-    out << "        </Grid>\n";
-  }
-
-  void sheets(std::size_t n_nodes, std::size_t n_segments)
-  {
-    const std::string ns = std::to_string(n_nodes), ms = std::to_string(n_segments);
-    out << "        <Grid Name=\"sheets\" GridType=\"Uniform\">\n"
-        << "          <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << n_segments
-        << "\" NodesPerElement=\"2\">\n";
-    data_item("            ", ms + " 2", "Int", 8, "sheets/connectivity");
-    out << "          </Topology>\n"
-        << "          <Geometry GeometryType=\"XYZ\">\n";
-    data_item("            ", ns + " 3", "Float", 8, "sheets/position");
-    out << "          </Geometry>\n";
-    attribute("velocity", "Vector", "Node", ns + " 3", "Float", 8, "sheets/velocity");
-    attribute("sheet_index", "Scalar", "Node", ns, "Int", 4, "sheets/sheet_index");
-    attribute("tension", "Scalar", "Cell", ms, "Float", 8, "sheets/tension");
-    attribute("strain", "Scalar", "Cell", ms, "Float", 8, "sheets/strain");
-    out << "        </Grid>\n";
-  }
-
-  void lines(const char *name, std::size_t m, bool with_wall_index, const char *index_name = "wall_index")
-  {
-    const std::string ms = std::to_string(m), group = std::string(name) + "/";
-    out << "        <Grid Name=\"" << name << "\" GridType=\"Uniform\">\n"
-        << "          <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << m << "\" NodesPerElement=\"2\">\n";
-    data_item("            ", ms + " 2", "Int", 8, group + "connectivity");
-    out << "          </Topology>\n"
-        << "          <Geometry GeometryType=\"XYZ\">\n";
-    data_item("            ", std::to_string(2 * m) + " 3", "Float", 8, group + "points");
-    out << "          </Geometry>\n";
-    attribute("normal_force", "Scalar", "Cell", ms, "Float", 8, group + "normal_force");
-    attribute("tangential_force", "Scalar", "Cell", ms, "Float", 8, group + "tangential_force");
-    attribute("force_magnitude", "Scalar", "Cell", ms, "Float", 8, group + "force_magnitude");
-    attribute("bonded", "Scalar", "Cell", ms, "Int", 4, group + "bonded");
-    if (with_wall_index)
-      attribute(index_name, "Scalar", "Cell", ms, "Int", 4, group + "wall_index");
-    out << "        </Grid>\n";
-  }
-};
-
 std::string snapshot_name(std::size_t index)
 {
   char name[32];
   std::snprintf(name, sizeof(name), "snapshot_%06zu", index);
   return name;
-}
-
-/// The sizes of one snapshot, stored as its attributes.
-struct SnapshotCounts
-{
-  std::uint64_t n_discs = 0, n_contacts = 0, n_wall_contacts = 0;
-  std::uint64_t n_sheet_nodes = 0, n_sheet_segments = 0, n_sheet_contacts = 0;
-};
-
-/// The <Grid> of one snapshot in the .xdmf; everything it needs is in the snapshot's attributes.
-std::string xdmf_entry(const std::string &h5_name, const std::string &name, double time, const SnapshotCounts &n)
-{
-  std::ostringstream out;
-  out.imbue(std::locale::classic());
-  out.precision(17);
-  XdmfGridWriter grid{out, xml_escape(h5_name) + ":/" + name + "/"};
-  out << "      <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
-      << "        <Time Value=\"" << time << "\"/>\n";
-  // ParaView does not read empty grids: leave them out.
-  if (n.n_discs > 0)
-    grid.particles(n.n_discs);
-  if (n.n_contacts > 0)
-    grid.lines("contacts", n.n_contacts, false);
-  if (n.n_wall_contacts > 0)
-    grid.lines("wall_contacts", n.n_wall_contacts, true);
-  if (n.n_sheet_segments > 0)
-    grid.sheets(n.n_sheet_nodes, n.n_sheet_segments);
-  if (n.n_sheet_contacts > 0)
-    grid.lines("sheet_contacts", n.n_sheet_contacts, true, "sheet_index");
-  out << "      </Grid>\n";
-  return out.str();
 }
 
 /// True if `path` (relative to `parent`, components separated by '/') exists, checking each
@@ -434,7 +181,7 @@ SnapshotWriter SnapshotWriter::resume(const std::filesystem::path &directory, co
             keeping = complete && time <= keep_until_time;
             if (keeping)
               {
-                writer.xdmf_entries_.push_back(xdmf_entry(writer.h5_name_, name, time, counts));
+                writer.xdmf_entries_.push_back(snapshot_detail::xdmf_entry(writer.h5_name_, name, time, counts));
                 continue;
               }
           }
@@ -470,10 +217,10 @@ void SnapshotWriter::write(const DemSystem &system)
       cluster_id[d] = p.body_id[b];
       connectivity[d] = static_cast<std::int64_t>(d);
     }
-  const ContactLines pairs = pair_lines(system);
-  const ContactLines walls = wall_lines(system);
-  const ContactLines sheet_contacts = sheet_contact_lines(system);
-  const SheetGeometry sheets = sheet_geometry(system);
+  const ContactLines pairs = snapshot_detail::pair_lines(system);
+  const ContactLines walls = snapshot_detail::wall_lines(system);
+  const ContactLines sheet_contacts = snapshot_detail::sheet_contact_lines(system);
+  const SheetGeometry sheets = snapshot_detail::sheet_geometry(system);
   SnapshotCounts counts;
   counts.n_discs = n;
   counts.n_contacts = pairs.size();
@@ -539,7 +286,7 @@ void SnapshotWriter::write(const DemSystem &system)
     file.close(); // a snapshot is listed in the .xdmf only once its file is complete on the disk
   }
 
-  xdmf_entries_.push_back(xdmf_entry(h5_name_, name, system.time(), counts));
+  xdmf_entries_.push_back(snapshot_detail::xdmf_entry(h5_name_, name, system.time(), counts));
   try
     {
       write_xdmf();
