@@ -3,7 +3,7 @@
 // REDF sample, made at the lowest confining stress or read from the sample file, and one test per
 // confining stress on a copy of it consolidated to that stress. The tests run side by side.
 #include "apps/biaxial_input.h"
-#include "dem/sample_file.h"
+#include "dem/laboratory/sample_file.h"
 
 #include <optional>
 #include <vector>

@@ -14,7 +14,7 @@
 #include "plot.h"
 #include "run_directory.h"
 
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <chrono>
 #include <cmath>
@@ -56,7 +56,7 @@ std::string write_continuum_fragment(const std::filesystem::path &file, const de
     << "# plane strain, E = E_2D (1 - nu^2) and nu = nu_2D / (1 + nu_2D) from the biaxial's E_2D = "
     << number(r.young_modulus, 6) << " Pa and nu_2D = " << number(r.poisson_ratio, 4) << ",\n"
     << "# the peak friction angle and cohesion of the Mohr-Coulomb fit over the confinements, the dilatancy\n"
-    << "# angle at the peak dilation rate (dem/biaxial_test.h, continuum_equivalent). For a pull-out's\n"
+    << "# angle at the peak dilation rate (dem/laboratory/biaxial_test.h, continuum_equivalent). For a pull-out's\n"
     << "# mode = fem: a line 'include " << file.filename().string()
     << "' (path relative to the working directory) after its subsection Continuum.\n"
     << "subsection Continuum\n"

@@ -2,8 +2,8 @@
 // The input of a biaxial campaign, which `geohybrid biaxial` runs once and `geohybrid calibrate`
 // once per iteration: the sample (REDF), the particles' and the walls' contacts, the confining
 // stresses and the test.
-#include "dem/biaxial_test.h"
-#include "dem/sample_preparation.h"
+#include "dem/laboratory/biaxial_test.h"
+#include "dem/laboratory/sample_preparation.h"
 
 #include <deal.II/base/parameter_handler.h>
 

@@ -6,10 +6,11 @@
 //
 // Which sample each campaign shears ('Calibration/sample'):
 //   reuse   one REDF sample per confining stress, made once with the starting parameters, given
-//           each guess's contact laws and brought back to equilibrium (dem/sample_reuse.h). One
-//           fabric for every iteration, so the response varies smoothly with the parameters: on
-//           a 200-cluster sample a 1 % change of kn moved phi' by 0.5 to 1 deg and E by 1 % this
-//           way, against 1.3 deg and 40 % with a new sample (which is another random assembly).
+//           each guess's contact laws and brought back to equilibrium
+//           (dem/laboratory/sample_reuse.h). One fabric for every iteration, so the response varies
+//           smoothly with the parameters: on a 200-cluster sample a 1 % change of kn moved phi' by
+//           0.5 to 1 deg and E by 1 % this way, against 1.3 deg and 40 % with a new sample (which
+//           is another random assembly).
 //   remake  a new REDF sample per iteration, made with the guess's parameters, exactly what
 //           `geohybrid biaxial` does with them; the scatter between samples then adds to the
 //           measurement, which is fine on large samples only.
@@ -23,10 +24,10 @@
 #include "biaxial_command.h"
 #include "run_directory.h"
 
-#include "dem/calibration.h"
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
+#include "dem/laboratory/calibration.h"
+#include "dem/laboratory/sample_reuse.h"
 #include "dem/measurements.h"
-#include "dem/sample_reuse.h"
 
 #include <chrono>
 #include <cmath>

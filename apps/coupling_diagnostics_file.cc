@@ -1,7 +1,7 @@
 #include "coupling_diagnostics_file.h"
 
 #include "coupling/hybrid_pullout.h"
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 #include "dem/measurements.h"
 
 #include <algorithm>

@@ -6,8 +6,8 @@
 #include "apps/summary.h"
 
 #include "coupling/coupled_stepper.h"
-#include "dem/checkpoint.h"
-#include "dem/pullout_tank.h"
+#include "dem/io/checkpoint.h"
+#include "dem/laboratory/pullout_tank.h"
 
 #include <cstddef>
 #include <filesystem>

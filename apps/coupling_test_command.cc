@@ -24,7 +24,7 @@
 #include "coupling_test_benchmarks.h"
 #include "run_directory.h"
 
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <algorithm>
 #include <array>

@@ -16,12 +16,13 @@
 #include "run_directory.h"
 #include "run_health.h"
 
-#include "dem/checked_output.h"
-#include "dem/checkpoint.h"
 #include "dem/dem_system.h"
+#include "dem/io/checked_output.h"
+#include "dem/io/checkpoint.h"
+#include "dem/io/particle_csv.h"
+#include "dem/io/snapshot_writer.h"
+#include "dem/laboratory/packing.h"
 #include "dem/measurements.h"
-#include "dem/packing.h"
-#include "dem/snapshot_writer.h"
 
 #include <chrono>
 #include <cmath>

@@ -5,7 +5,7 @@
 #include "summary.h"
 #include "sweep_results.h"
 
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <algorithm>
 #include <fstream>

@@ -1,6 +1,6 @@
 #include "plot.h"
 
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <algorithm>
 #include <cstdlib>

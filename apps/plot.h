@@ -33,6 +33,6 @@ struct PlotPanel
 /// Writes PNG.gp and runs gnuplot to make PNG with the panels stacked vertically. Returns false
 /// (and says why on stderr) if gnuplot is not installed or fails; the results stay valid. Throws
 /// std::runtime_error naming PNG.gp if it cannot be written, or naming PNG if gnuplot left it cut
-/// short (a full disk: dem/checked_output.h).
+/// short (a full disk: dem/io/checked_output.h).
 bool plot_png(const std::filesystem::path &png, const std::string &title, const std::vector<PlotPanel> &panels);
 } // namespace geohybrid::apps

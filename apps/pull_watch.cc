@@ -4,7 +4,7 @@
 #include "apps/run_health.h"
 
 #include "coupling/particle_box.h"
-#include "dem/checkpoint.h"
+#include "dem/io/checkpoint.h"
 #include "dem/measurements.h"
 
 #include <algorithm>

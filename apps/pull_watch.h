@@ -6,7 +6,7 @@
 // the sheet's inertia or the motion of the whole carrying the work) and keeps the worst of the
 // quality figures for the warnings the run finishes with. Its state goes into the checkpoint, so a
 // resumed run warns as the straight run does.
-#include "dem/pullout_tank.h"
+#include "dem/laboratory/pullout_tank.h"
 
 #include <optional>
 #include <string>

@@ -1,7 +1,7 @@
 #pragma once
 // `geohybrid pullout FILE.prm`: a pull-out test of a geosynthetic anchored in the INSA tank
 // (reference paper, sections 2.2 and 4.3): simple run-out or wrap-around, head tension against
-// head displacement. 'mode = dem' runs the discrete model (dem/pullout_tank.h,
+// head displacement. 'mode = dem' runs the discrete model (dem/laboratory/pullout_tank.h,
 // apps/pullout_dem_mode.h), 'mode = fem' the continuum (fem/pullout_problem.h,
 // apps/pullout_fem_mode.h) from the same file, also under mpirun; 'mode = hybrid' the two coupled
 // (coupling/hybrid_pullout.h, apps/pullout_hybrid_mode.h), in one process. The input is read in

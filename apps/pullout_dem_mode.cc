@@ -12,9 +12,9 @@
 
 #include <deal.II/base/mpi.h>
 
-#include "dem/checkpoint.h"
+#include "dem/io/checkpoint.h"
+#include "dem/laboratory/pullout_tank.h"
 #include "dem/measurements.h"
-#include "dem/pullout_tank.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,7 +1,7 @@
 #pragma once
 // `geohybrid pullout FILE.prm` with 'set mode = dem' (the default): the tank filled in layers
-// with particles, the sheet laid at its depth on the lift below it (dem/pullout_tank.h); then
-// the clamp, outside the front wall, pulls the sheet horizontally at a set rate and the run
+// with particles, the sheet laid at its depth on the lift below it (dem/laboratory/pullout_tank.h);
+// then the clamp, outside the front wall, pulls the sheet horizontally at a set rate and the run
 // records the head tension (the clamp's reaction) against the head displacement.
 //
 // Before pulling, the run measures the normal stress the soil applies to the sheet (on its top

@@ -139,8 +139,8 @@ ContinuumInput parse_continuum(ParameterHandler &prm, const PullOutInput &in, co
   const dem::PullOutGeometry &g = in.tank.geometry;
   p.sheet_length = g.anchorage_length;
   p.sheet_depth = g.cover;
-  // The wrap-around as the DEM lays it (dem/pullout_tank.cc): up D1 from the lower part's end,
-  // then B back towards the front wall; H = D1 + D2 is checked with the geometry.
+  // The wrap-around as the DEM lays it (dem/laboratory/pullout_tank.cc): up D1 from the lower
+  // part's end, then B back towards the front wall; H = D1 + D2 is checked with the geometry.
   p.wrap_around = g.anchorage == dem::Anchorage::wrap_around;
   if (p.wrap_around)
     {

@@ -2,8 +2,8 @@
 
 #include "plot.h"
 
-#include "dem/checked_output.h"
-#include "dem/pullout_fields.h"
+#include "dem/io/checked_output.h"
+#include "dem/laboratory/pullout_fields.h"
 
 #include <algorithm>
 #include <cmath>

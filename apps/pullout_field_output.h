@@ -17,9 +17,9 @@
 //                                          (Figure 11), written by finish()
 //
 // D is the chosen head displacement in mm.
-#include "dem/checkpoint.h"
 #include "dem/dem_system.h"
-#include "dem/snapshot_writer.h"
+#include "dem/io/checkpoint.h"
+#include "dem/io/snapshot_writer.h"
 
 #include <cstdint>
 #include <filesystem>

@@ -1,6 +1,6 @@
 #include "pullout_forces_output.h"
 
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <iomanip>
 #include <locale>

@@ -13,8 +13,8 @@
 #include "coupling/hybrid_checkpoint.h"
 #include "coupling/hybrid_pullout.h"
 #include "dem/conventions.h"
+#include "dem/laboratory/tank_filling.h"
 #include "dem/measurements.h"
-#include "dem/tank_filling.h"
 
 #include <deal.II/base/mpi.h>
 

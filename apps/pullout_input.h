@@ -1,9 +1,9 @@
 #pragma once
 // The input of `geohybrid pullout` as read from its file, shared by the soil models: the tank, the
-// anchorage, the sheet and the pull (dem/pullout_tank.h's plain data, which the continuum mode
-// maps onto fem::PulloutProblemParameters), and the outputs asked for.
+// anchorage, the sheet and the pull (dem/laboratory/pullout_tank.h's plain data, which the
+// continuum mode maps onto fem::PulloutProblemParameters), and the outputs asked for.
 #include "apps/reference_runs.h"
-#include "dem/pullout_tank.h"
+#include "dem/laboratory/pullout_tank.h"
 
 #include <deal.II/base/parameter_handler.h>
 

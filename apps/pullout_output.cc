@@ -2,7 +2,7 @@
 
 #include "apps/interrupt.h"
 #include "apps/plot.h"
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <algorithm>
 #include <iostream>

@@ -12,8 +12,8 @@
 #include "apps/reference_runs.h"
 #include "apps/run_directory.h"
 
-#include "dem/checkpoint.h"
-#include "dem/pullout_tank.h"
+#include "dem/io/checkpoint.h"
+#include "dem/laboratory/pullout_tank.h"
 
 #include <array>
 #include <cstdint>

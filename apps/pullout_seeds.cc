@@ -9,7 +9,7 @@
 #include "run_directory.h"
 #include "spread.h"
 
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <deal.II/base/mpi.h>
 

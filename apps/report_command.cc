@@ -11,7 +11,7 @@
 #include "sweep_definition.h"
 #include "sweep_results.h"
 
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <deal.II/base/parameter_handler.h>
 

@@ -6,7 +6,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include "dem/pullout_tank.h"
+#include "dem/laboratory/pullout_tank.h"
 
 #include <algorithm>
 #include <iostream>

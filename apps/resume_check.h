@@ -4,7 +4,7 @@
 // instead of continuing into a run that parameters.prm would then describe wrongly. Only a
 // command's run-control entries (where it writes, its threads, when it checkpoints or stops, for
 // `geohybrid dem` its end time and output intervals) may change on resuming.
-#include "dem/checkpoint.h"
+#include "dem/io/checkpoint.h"
 
 #include <filesystem>
 #include <string>

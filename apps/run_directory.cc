@@ -2,7 +2,7 @@
 
 #include "output_guard.h"
 
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <deal.II/base/parameter_handler.h>
 

@@ -50,7 +50,7 @@ void write_resolved_parameters(const dealii::ParameterHandler &prm, const std::f
 /// opens it for appending; a missing file is created as for a fresh run.
 /// Throws std::runtime_error naming the file if it cannot be read or written, or if its header
 /// is not `header` (the columns changed since the earlier run). The caller checks its rows where
-/// they are recorded (dem::flush_checked, dem/checked_output.h).
+/// they are recorded (dem::flush_checked, dem/io/checked_output.h).
 std::ofstream open_csv_rows(const std::filesystem::path &file, const std::string &header,
                             std::optional<double> keep_until_time);
 

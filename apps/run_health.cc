@@ -4,7 +4,7 @@
 #include "apps/summary.h"
 
 #include "dem/dem_system.h"
-#include "dem/sheet_inertia_estimate.h"
+#include "dem/laboratory/sheet_inertia_estimate.h"
 
 #include <algorithm>
 #include <cmath>

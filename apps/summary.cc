@@ -1,6 +1,6 @@
 #include "summary.h"
 
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <cmath>
 #include <fstream>

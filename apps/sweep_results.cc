@@ -4,7 +4,7 @@
 #include "run_directory.h"
 #include "spread.h"
 
-#include "dem/checked_output.h"
+#include "dem/io/checked_output.h"
 
 #include <cstdlib>
 #include <fstream>

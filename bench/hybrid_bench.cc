@@ -20,8 +20,8 @@
 // shared host: with 2 threads and the default (spinning) policy, a loaded host made the coupled
 // pull's many short parallel regions about 10 x slower (measured).
 #include "coupling/hybrid_pullout.h"
+#include "dem/laboratory/pullout_tank.h"
 #include "dem/measurements.h"
-#include "dem/pullout_tank.h"
 
 #include <deal.II/base/mpi.h>
 

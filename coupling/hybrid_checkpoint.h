@@ -1,9 +1,9 @@
 #pragma once
 // Checkpoints of a hybrid pull-out: the continuum's state (fem::ExplicitSolverState, its sheet's
 // included) as named arrays of a dem::CommandState, which the DEM checkpoint file stores beside
-// the particles' state (dem/checkpoint.h). Keys start with "continuum_"; doubles round-trip
+// the particles' state (dem/io/checkpoint.h). Keys start with "continuum_"; doubles round-trip
 // exactly, so a resumed run continues bit for bit.
-#include "dem/checkpoint.h"
+#include "dem/io/checkpoint.h"
 #include "fem/explicit_solver.h"
 
 namespace geohybrid::coupling

@@ -1,7 +1,7 @@
 #pragma once
 // The hybrid pull-out (issue 6, `geohybrid pullout` with mode = hybrid): the INSA tank of the DEM
-// pull-out (dem/pullout_tank.h) with particles only in a box round the anchorage and the rest of
-// the tank a deal.II continuum, tied across an overlap band by the coupled stepper.
+// pull-out (dem/laboratory/pullout_tank.h) with particles only in a box round the anchorage and the
+// rest of the tank a deal.II continuum, tied across an overlap band by the coupled stepper.
 //
 // The set-up, in the tank's frame (x from the back wall to the front wall, y up):
 //
@@ -18,7 +18,7 @@
 // - The particle box reaches `margin` beyond the sheet below it, above it (above the upper part
 //   of a wrap-around) and behind its far end, clipped to the tank: a side of the box on a tank
 //   wall keeps that wall, the others are shared with the continuum. The box is filled in lifts as
-//   the DEM tank is (dem/tank_filling.h), its walls where the tank's are and temporary walls on
+//   the DEM tank is (dem/laboratory/tank_filling.h), its walls where the tank's are and temporary walls on
 //   its shared sides, with as many particles as the whole tank would have in its area (the same
 //   grain size); the sheet is laid on the lift at its depth. Its lifts: particle_box.h. Once
 //   filled, and before the coupling, the box settles on its own: under the overburden through
@@ -59,7 +59,7 @@
 #include "coupling/coupling_method.h"
 #include "coupling/overlap_band.h"
 #include "coupling/particle_box.h"
-#include "dem/pullout_tank.h"
+#include "dem/laboratory/pullout_tank.h"
 #include "fem/constitutive/soil_model.h"
 #include "fem/sheet_interface.h"
 #include "fem/explicit_solver.h"

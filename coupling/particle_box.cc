@@ -1,7 +1,7 @@
 #include "particle_box.h"
 
 #include "coupling/hybrid_pullout.h"
-#include "dem/tank_filling.h"
+#include "dem/laboratory/tank_filling.h"
 
 #include <algorithm>
 #include <cmath>

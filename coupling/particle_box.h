@@ -4,10 +4,10 @@
 //
 // The box reaches `margin` below the sheet (or down to the base) in whole lifts, and from the
 // sheet up to `margin` above its highest part rounded up to whole lifts (or to the surface). As
-// in dem mode (dem/pullout_tank.h), the sheet lies on a lift boundary, and so does a
+// in dem mode (dem/laboratory/pullout_tank.h), the sheet lies on a lift boundary, and so does a
 // wrap-around's upper part, laid on the lift whose top is at its level. REDF refuses a lift
-// thinner than five times its largest grain (dem/tank_filling.h), and the grains' size is set by
-// the whole tank's particles per area ('Filling/number of particles'), not by the box.
+// thinner than five times its largest grain (dem/laboratory/tank_filling.h), and the grains' size
+// is set by the whole tank's particles per area ('Filling/number of particles'), not by the box.
 // - Given lifts (HybridRegionSpec::lift_thickness > 0): at most that thick, the margin below the
 //   sheet divided evenly, as always; checked against the grains.
 // - Automatic lifts (0): the given rule at the former default, 0.05 m, when the fill takes its
@@ -15,7 +15,7 @@
 //   least automatic_lift_room x 5 largest grains thick: the margin below divided into fewer lifts,
 //   and failing that whole lifts reaching past the margin, the box then further down (the margin
 //   is a least distance).
-#include "dem/pullout_tank.h"
+#include "dem/laboratory/pullout_tank.h"
 
 #include <cstddef>
 #include <string>

@@ -188,9 +188,9 @@ public:
   /// a coupled pull turns them on to close its balance, whose changes then count from here.
   void set_energy_tracking(bool on) { settings_.track_energy = on; }
   /// Local damping coefficient of the sheets' nodes, by default the bodies' (settings). Local
-  /// damping opposes a node's velocity with alpha |F|: on a sheet sliding steadily one way
-  /// through grains whose contacts fluctuate, it is a drag that does not vanish with the rate
-  /// (a pull-out runs better with the sheet undamped: pullout_tank.h). Throws unless in [0, 1).
+  /// damping opposes a node's velocity with alpha |F|: on a sheet sliding steadily one way through
+  /// grains whose contacts fluctuate, it is a drag that does not vanish with the rate (a pull-out
+  /// runs better with the sheet undamped: dem/laboratory/pullout_tank.h). Throws unless in [0, 1).
   void set_sheet_local_damping(double alpha);
   /// The particles' local damping from now on (DemSettings::local_damping); a sheet without its
   /// own keeps following it. Throws unless in [0, 1).
@@ -255,7 +255,7 @@ public:
   /// (carried over list rebuilds). The fixed bodies' resultants then leave those contacts out:
   /// free them in a system whose forces are initialised again (initialise_forces_at_next_step).
   /// A tank's settled lifts while the next one grows are up to two thirds of its contacts
-  /// (lift_growth.cc).
+  /// (dem/laboratory/lift_growth.cc).
   void set_skip_contacts_between_fixed_bodies(bool skip) { skip_fixed_contacts_ = skip; }
 
   /// The next step starts, as the first one does, by evaluating every force at the present

@@ -183,8 +183,9 @@ PulloutProblem::PulloutProblem(const dealii::parallel::distributed::Triangulatio
   geostatic_.validate(where + ": geostatic stress");
   solver_->set_initial_stress(geostatic_);
 
-  // The sheet from the front wall (node 0, the clamp) back over L at depth H; a wrap-around goes
-  // on up D1 and forward over B at depth H - D1, as the DEM's (dem/pullout_tank.cc, sheet_corners).
+  // The sheet from the front wall (node 0, the clamp) back over L at depth H; a wrap-around goes on
+  // up D1 and forward over B at depth H - D1, as the DEM's (dem/laboratory/pullout_tank.cc,
+  // sheet_corners).
   const double y_sheet = y_top_ - parameters_.sheet_depth, x_end = x_front_ - parameters_.sheet_length;
   std::vector<dealii::Point<dim>> corners{dealii::Point<dim>(x_front_, y_sheet), dealii::Point<dim>(x_end, y_sheet)};
   if (parameters_.wrap_around)

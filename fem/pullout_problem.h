@@ -12,8 +12,8 @@
 // - the sheet (fem/truss_sheet.h) lies at depth H below the top, from the front wall back into the
 //   tank over its length L, tied to the soil by the Mohr-Coulomb interface of
 //   fem/sheet_interface.h; its node at the front wall is the clamp. A wrap-around (as the DEM's,
-//   dem/pullout_tank.cc, PullOutGeometry::sheet_corners) goes on from the lower part's end up a
-//   vertical return of D1 and back towards the front wall over an upper part of B at depth
+//   dem/laboratory/pullout_tank.cc, PullOutGeometry::sheet_corners) goes on from the lower part's
+//   end up a vertical return of D1 and back towards the front wall over an upper part of B at depth
 //   H - D1 (= D2); the interface follows each node's slip along that path, round the corners
 //   (fem/sheet_interface.h);
 // - the clamp moves in +x at a constant rate, reached over a ramp (the pull), the soil and sheet are integrated by
@@ -86,7 +86,7 @@ struct PulloutProblemParameters
   // Pull.
   double pull_rate = 0.004;          ///< clamp velocity, > 0 [m/s]
   /// The clamp's speed rises linearly from 0 to the rate over this head displacement, in
-  /// [0, final displacement) (as the DEM pull, dem/pullout_tank.h) [m].
+  /// [0, final displacement) (as the DEM pull, dem/laboratory/pullout_tank.h) [m].
   double ramp_displacement = 0.0;
   double final_displacement = 0.06;  ///< head displacement at the end, > 0 [m]
   double output_interval = 0.5e-3;   ///< head displacement between curve points, in (0, final] [m]

@@ -2,7 +2,7 @@
 # (bash's ulimit -S -f, with SIGXFSZ ignored): its write fails with EFBIG as it would with ENOSPC
 # on a full disk, through the same write(2), without root or a mount. (A soft limit: the file
 # abandoned after the failure is closed in memory, beyond the limit, which geohybrid lifts to
-# the hard one for that close; dem/hdf5_writable_file.h.) HDF5 1.10 crashed inside
+# the hard one for that close; dem/io/hdf5_writable_file.h.) HDF5 1.10 crashed inside
 # MPI_Finalize after such a failure (rc 139). Expected: status 1, one error naming particles.h5
 # and the failed write, no summary.json, and a .xdmf that lists only complete snapshots.
 # cmake -DGEOHYBRID=... -DWORK=DIR -P check_full_disk.cmake

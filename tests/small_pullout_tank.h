@@ -1,7 +1,7 @@
 #pragma once
 // The small DEM pull-out tank of the DEM tests (test_dem_pullout.cc, test_dem_lift_cache.cc):
 // one set-up, so that both fill the same tank.
-#include "dem/pullout_tank.h"
+#include "dem/laboratory/pullout_tank.h"
 
 namespace geohybrid::testing
 {

@@ -3,7 +3,7 @@
 #include "apps/biaxial_command.h"
 #include "apps/output_guard.h"
 #include "apps/pullout_fem_mode.h"
-#include "dem/biaxial_test.h"
+#include "dem/laboratory/biaxial_test.h"
 #include "text_file.h"
 
 #include <gtest/gtest.h>

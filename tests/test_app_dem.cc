@@ -2,7 +2,7 @@
 // refused before anything is written, with a message naming the file and the parameter.
 #include "apps/dem_command.h"
 #include "apps/output_guard.h"
-#include "dem/packing.h"
+#include "dem/io/particle_csv.h"
 
 #include <gtest/gtest.h>
 

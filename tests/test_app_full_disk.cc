@@ -1,6 +1,6 @@
 // Every command on a full disk (issue 24): the real program, in a child process, stops at the
 // first record it cannot write with status 1 and one error naming that file, never a crash, and
-// leaves no summary.json, so that no run cut short looks finished (dem/checked_output.h).
+// leaves no summary.json, so that no run cut short looks finished (dem/io/checked_output.h).
 //
 // Two ways to fill the disk without root or a mount. A file-size limit on the child
 // (geohybrid_child.h): every write beyond it fails with EFBIG as on a full disk with ENOSPC,

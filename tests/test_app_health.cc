@@ -12,9 +12,9 @@
 #include "apps/run_health.h"
 #include "apps/summary.h"
 #include "coupling/particle_box.h"
-#include "dem/checkpoint.h"
 #include "dem/dem_system.h"
-#include "dem/sheet_inertia_estimate.h"
+#include "dem/io/checkpoint.h"
+#include "dem/laboratory/sheet_inertia_estimate.h"
 #include "temporary_directory.h"
 #include "tiny_pullout_input.h"
 

@@ -5,7 +5,7 @@
 #include "apps/pullout_output.h"
 #include "apps/pullout_seeds.h"
 #include "apps/resume_check.h"
-#include "dem/checkpoint.h"
+#include "dem/io/checkpoint.h"
 #include "text_file.h"
 #include "tiny_pullout_input.h"
 

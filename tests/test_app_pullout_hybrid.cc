@@ -3,7 +3,7 @@
 // the box, an elastic continuum elsewhere), pulled 1 mm: the output contract (dem mode's curve
 // files, summary.json with the hybrid's keys), and bad input refused by name before summary.json.
 #include "apps/pullout_command.h"
-#include "dem/checkpoint.h"
+#include "dem/io/checkpoint.h"
 #include "small_hybrid_pullout_input.h"
 #include "text_file.h"
 

@@ -1,7 +1,7 @@
 // Elastic and strength behaviour of DEM assemblies against closed forms, and the biaxial test.
-#include "dem/biaxial_test.h"
+#include "dem/laboratory/biaxial_test.h"
+#include "dem/laboratory/sample_preparation.h"
 #include "dem/measurements.h"
-#include "dem/sample_preparation.h"
 
 #include <gtest/gtest.h>
 

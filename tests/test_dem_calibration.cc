@@ -1,7 +1,7 @@
-// The calibration iteration (dem/calibration.h) against analytic stand-ins for the biaxial test:
-// it must meet the targets within tolerance in a few campaigns, recover the parameters that
-// produced them, and stop with a clear message when a target is out of reach.
-#include "dem/calibration.h"
+// The calibration iteration (dem/laboratory/calibration.h) against analytic stand-ins for the
+// biaxial test: it must meet the targets within tolerance in a few campaigns, recover the
+// parameters that produced them, and stop with a clear message when a target is out of reach.
+#include "dem/laboratory/calibration.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // DEM checkpoints: a state written and read back is the same state, bit for bit, and a run
 // continued from a checkpoint in a freshly built system is the straight run, bit for bit. A missing,
 // damaged or foreign file is refused with a message naming it.
-#include "dem/checkpoint.h"
 #include "dem/dem_system.h"
+#include "dem/io/checkpoint.h"
 
 #include <hdf5.h>
 

@@ -1,11 +1,11 @@
-// The field lists of a checkpoint (dem/checkpoint_fields.h), checked through themselves: every
+// The field lists of a checkpoint (dem/io/checkpoint_fields.h), checked through themselves: every
 // field of every state, given a value of its own, is written and read back exactly. The lists
 // are walked by two visitors of this file: one that gives each field a value, one that prints
 // each field exactly. A field missing from its list is caught at compile time instead (the
 // sizeof checks beside the lists).
-#include "dem/checkpoint.h"
-#include "dem/checkpoint_fields.h"
 #include "dem/dem_system.h"
+#include "dem/io/checkpoint.h"
+#include "dem/io/checkpoint_fields.h"
 
 #include <hdf5.h>
 

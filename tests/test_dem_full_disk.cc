@@ -6,11 +6,12 @@
 //
 // The disk is "full" through a file-size limit on this process (file_size_limit.h): the writes
 // fail with EFBIG instead of ENOSPC, through the same write(2) and the same HDF5 error path.
-// The DEM's text files (a particle CSV) are checked as every command's (dem/checked_output.h).
-#include "dem/checkpoint.h"
+// The DEM's text files (a particle CSV) are checked as every command's (dem/io/checked_output.h).
 #include "dem/dem_system.h"
-#include "dem/packing.h"
-#include "dem/snapshot_writer.h"
+#include "dem/io/checkpoint.h"
+#include "dem/io/particle_csv.h"
+#include "dem/io/snapshot_writer.h"
+#include "dem/laboratory/packing.h"
 
 #include <hdf5.h>
 
@@ -168,7 +169,7 @@ TEST(FullDisk, FailureAtTheFlushIsReportedAndLeavesNothingOpen)
 
 // A particle CSV (dem::write_particle_csv, final_particles.csv of `geohybrid dem`) on a full
 // disk (/dev/full: every write fails with ENOSPC). Three discs fit in the stream's buffer, whose
-// failure comes only at the close: the close is checked (dem/checked_output.h), not left to the
+// failure comes only at the close: the close is checked (dem/io/checked_output.h), not left to the
 // destructor, which would say nothing.
 TEST(FullDisk, ParticleCsvNamesTheFile)
 {

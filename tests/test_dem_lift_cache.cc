@@ -1,8 +1,8 @@
-// The lift cache (dem/lift_cache.h): a lift below the first sheet taken from the cache is bit for
-// bit the lift the fill makes, so the filled tank is too; a setting the lift does not read (the
-// sheet's) shares it, one it reads (the grains' friction) does not.
-#include "dem/lift_cache.h"
-#include "dem/pullout_tank.h"
+// The lift cache (dem/laboratory/lift_cache.h): a lift below the first sheet taken from the cache
+// is bit for bit the lift the fill makes, so the filled tank is too; a setting the lift does not
+// read (the sheet's) shares it, one it reads (the grains' friction) does not.
+#include "dem/laboratory/lift_cache.h"
+#include "dem/laboratory/pullout_tank.h"
 #include "small_pullout_tank.h"
 #include "temporary_directory.h"
 

@@ -1,7 +1,7 @@
 // The DEM snapshot writer: the HDF5 file read back with the HDF5 C API holds what the system held
 // when each snapshot was written, and the XDMF file is well-formed and lists every snapshot.
 #include "dem/dem_system.h"
-#include "dem/snapshot_writer.h"
+#include "dem/io/snapshot_writer.h"
 
 #include <hdf5.h>
 

@@ -1,10 +1,10 @@
-// The pull-out tank (dem/pullout_tank.h): geometry checks that name the parameter, the sheet's
-// polyline, the grains' density for the sand's unit weight, and a small tank filled with its sheet
-// laid at its depth and pulled a short distance: the head tension rises to a plateau set by the
-// interface friction on both faces of the sheet.
+// The pull-out tank (dem/laboratory/pullout_tank.h): geometry checks that name the parameter, the
+// sheet's polyline, the grains' density for the sand's unit weight, and a small tank filled with
+// its sheet laid at its depth and pulled a short distance: the head tension rises to a plateau set
+// by the interface friction on both faces of the sheet.
+#include "dem/laboratory/pullout_fields.h"
+#include "dem/laboratory/pullout_tank.h"
 #include "dem/measurements.h"
-#include "dem/pullout_fields.h"
-#include "dem/pullout_tank.h"
 #include "small_pullout_tank.h"
 
 #include <gtest/gtest.h>
@@ -226,7 +226,7 @@ TEST(PullOutTank, SmallTankPlateauAboveOneFaceFrictionAndThreadIndependent)
     }
 }
 
-// The field outputs (dem/pullout_fields.h) on sets whose answers are known.
+// The field outputs (dem/laboratory/pullout_fields.h) on sets whose answers are known.
 TEST(PullOutFields, DisplacementsUpliftAndForceNetworkOfKnownMoves)
 {
   // Two columns of three discs (radius 5 mm, 10 mm apart) and a cluster on the right; then the

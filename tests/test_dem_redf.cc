@@ -1,7 +1,7 @@
 // REDF sample preparation (Chareyre & Villard 2005): the target porosity and the confining
 // stress are met within tolerance; impossible targets are refused with a clear message.
+#include "dem/laboratory/sample_preparation.h"
 #include "dem/measurements.h"
-#include "dem/sample_preparation.h"
 
 #include <gtest/gtest.h>
 

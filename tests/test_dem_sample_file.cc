@@ -1,9 +1,9 @@
 // REDF sample files: a sample written and read back is the same sample, bit for bit, and shears
 // exactly as the one in memory does; a missing, foreign or damaged file is refused with a message
 // naming it; two specs are compared on what makes the sample, not on the thread count.
-#include "dem/biaxial_test.h"
-#include "dem/checkpoint.h"
-#include "dem/sample_file.h"
+#include "dem/io/checkpoint.h"
+#include "dem/laboratory/biaxial_test.h"
+#include "dem/laboratory/sample_file.h"
 
 #include "temporary_directory.h"
 

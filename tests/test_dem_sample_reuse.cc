@@ -1,8 +1,9 @@
-// A prepared sample given other contact laws (dem/sample_reuse.h): the laws are in force, the
-// time step follows the stiffest law, and the sample is back in equilibrium at its stress.
+// A prepared sample given other contact laws (dem/laboratory/sample_reuse.h): the laws are in
+// force, the time step follows the stiffest law, and the sample is back in equilibrium at its
+// stress.
+#include "dem/laboratory/sample_preparation.h"
+#include "dem/laboratory/sample_reuse.h"
 #include "dem/measurements.h"
-#include "dem/sample_preparation.h"
-#include "dem/sample_reuse.h"
 
 #include <gtest/gtest.h>
 

@@ -3,10 +3,10 @@
 // pull-out resistance 2 sigma_v tan(delta) L, a disc hanging on a sheet against the closed-form
 // sag, friction carried across nodes, the energy balance, 1 vs 2 threads, checkpoint resume,
 // snapshots, and the refusal of bad input.
-#include "dem/checkpoint.h"
 #include "dem/dem_system.h"
+#include "dem/io/checkpoint.h"
+#include "dem/io/snapshot_writer.h"
 #include "dem/measurements.h"
-#include "dem/snapshot_writer.h"
 
 #include <hdf5.h>
 

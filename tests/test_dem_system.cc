@@ -2,8 +2,8 @@
 // wall), the stress servo of a wall, bit-for-bit reproducibility across thread counts, and the
 // refusal of bad input.
 #include "dem/dem_system.h"
+#include "dem/laboratory/sample_preparation.h"
 #include "dem/measurements.h"
-#include "dem/sample_preparation.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Layer-by-layer filling of a tank under gravity (REDF per layer): each layer's slab reaches its
 // target porosity, the fill ends in static equilibrium and the base carries the weight of the soil.
+#include "dem/laboratory/sample_preparation.h"
+#include "dem/laboratory/tank_filling.h"
 #include "dem/measurements.h"
-#include "dem/sample_preparation.h"
-#include "dem/tank_filling.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // stage, the third lift could not be grown: "tank filling, layer 3: REDF: the target porosity
 // 0.25 cannot be reached: the assembly jams at porosity 0.526385 even without friction (stress
 // 52058.4 Pa)", a row of grains pinched between the held upper part and the lift's lid.
-#include "dem/pullout_tank.h"
+#include "dem/laboratory/pullout_tank.h"
 
 #include <gtest/gtest.h>
 

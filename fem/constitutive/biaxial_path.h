@@ -1,7 +1,7 @@
 #pragma once
 // A single material point taken through the plane-strain biaxial test of the DEM calibration
-// (dem/biaxial_test.h): in-plane isotropic compression to the confining pressure, then axial
-// (y) compression at constant lateral (x) stress, eps_zz = 0 throughout. Mixed stress/strain
+// (dem/laboratory/biaxial_test.h): in-plane isotropic compression to the confining pressure, then
+// axial (y) compression at constant lateral (x) stress, eps_zz = 0 throughout. Mixed stress/strain
 // control is solved by Newton iterations with the model's consistent tangent, so the number of
 // iterations also tells whether the tangent is right. It lets a FEM soil's parameters be compared
 // directly with the DEM curves, and is the material test of fem/'s return mappings.
