@@ -117,6 +117,13 @@ if command -v gnuplot > /dev/null 2>&1; then
   [[ ! -e "$out/figures/curve_runout_h040.png" ]] || fail "a mean curve of curves not averaged"
 fi
 
+# One more case complete, 20 % above its experiment (GT75 H = 0.50 m, B = 0.5 m: 19.4 kN/m), with
+# most still missing: 'every case within 10 %' is missed already, the mean |difference| not yet known.
+k=0; for f in 1.18 1.20 1.22; do k=$((k + 1)); fabricate "$runs/gt75_h050_b050/seed$k" "$(awk -v f="$f" 'BEGIN { print 19.4 * f }')" 28.50 "${three_rows[@]}"; done
+report
+grep -q "| every case within 10 % of its experiment (Table 3) | \*\*missed\*\* | 1 of 2 complete cases within 10 %; 2 of 7 cases complete |" "$md" || fail "target 1 missed before the campaign is whole"
+grep -q "| mean \\\\|difference\\\\| to the experiments at most 5 % | not yet evaluable |" "$md" || fail "target 2 not yet evaluable"
+
 # Every case with an experiment complete: 2, 4 and 6 % above it (mean +4 %) but one, 20 % above:
 # within 10 % missed, mean |difference| (5 x 4 + 1.35 + 20) / 7 = 5.91 % missed.
 while IFS='|' read -r name _ geo H D1 B _ _; do
