@@ -16,7 +16,7 @@ fail() { echo "FAILED: $*" >&2; failures=$((failures + 1)); }
 
 # A finished run: seed directory $1, T_max $2 [kN/m], interface angle $3, curve rows "u,T" after.
 fabricate() {
-  local dir="$1" T="$2" angle="$3"; shift 3
+  local dir="$1" T="$2" angle="$3" count="${COUNT:-25000}"; shift 3
   mkdir -p "$dir"
   printf '{\n  "T_max_kN_per_m": %s,\n  "mode": "dem",\n  "parameters_hash": "0123456789abcdef"\n}\n' "$T" > "$dir/summary.json"
   printf 'head_displacement_m,head_tension_kN_per_m\n' > "$dir/pullout_curve.csv"
@@ -25,7 +25,7 @@ fabricate() {
 # Listing of Parameters
 set mode = dem # default: dem
 subsection Filling
-  set number of particles = 25000 # default: 20000
+  set number of particles = $count # default: 20000
 end
 subsection Pull
   set rate            = 0.05
@@ -55,6 +55,10 @@ fabricate "$runs/runout_h040/seed1" 6.5 28.50 "${three_rows[@]}"
 fabricate "$runs/runout_h040/seed2" 6.8 28.50 "0,0" "0.000501,5" # one row short: not averaged
 fabricate "$runs/runout_h050/seed1" 7.9 25.60 "${three_rows[@]}" # at an older angle: to be run again
 
+# The size check: the calibration case's runs (25,000 clusters, 28.50 deg) beside a set at 50,000
+# (one group) and one at 50,000 at another angle (a group of its own).
+k=0; for T in 14.5 14.9 15.3; do k=$((k + 1)); COUNT=50000 fabricate "$tmp/validation/size_check/c50000/gt230_h040_b025/seed$k" "$T" 28.50 "${three_rows[@]}"; done
+COUNT=50000 fabricate "$tmp/validation/size_check/c50000_delta25.60/gt230_h040_b025/seed1" 11.0 25.60 "${three_rows[@]}"
 snapshot() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 -r md5sum; find . -type l -exec ls -l {} \; | awk '{ print $(NF-2), $NF }'); }
 runs_before="$(snapshot "$runs")" repo_before="$(snapshot "$repo/validation")"
 report() { VALIDATION_RUNS="$runs" VALIDATION_REPORT_DIR="$out" VALIDATION_SEEDS=3 VALIDATION_MODE=dem VALIDATION_DELTA= \
@@ -109,6 +113,11 @@ grep -q "| every case within 10 % of its experiment (Table 3) | not yet evaluabl
 # The trend's standard error: sqrt(0.3^2 / 3 + 0.2^2 / 3) / 15.4 = 1.35 points; the mean curves are
 # the same rows (+0.0 %) and have no plateau (-).
 grep -q "| trend with B .* | \*\*met\*\* | geohybrid: +7.8 % (standard error 1.4 points; on the mean curves' T_max +0.0 %, on their plateaus -), Table 6: +7.6 % |" "$md" || fail "the trend"
+# 14.0, 14.1, 14.2 (std 0.1) against 14.5, 14.9, 15.3 (std 0.4): (14.1 - 14.9) / 14.9 = -5.37 %,
+# standard error sqrt(0.1^2 / 3 + 0.4^2 / 3) / 14.9 = 1.60 %.
+grep -q '| `runs/calibration_gt230_h040_b025_delta28.50` | 25000 | 0.05 | 28.50 | 14.000, 14.100, 14.200 | 14.100 (0.100) | -5.4 % (standard error 1.6 %) |$' "$md" || fail "the size check's difference"
+grep -q '| `size_check/c50000/gt230_h040_b025` | 50000 | 0.05 | 28.50 | 14.500, 14.900, 15.300 | 14.900 (0.400) | - |$' "$md" || fail "the size check's largest count"
+grep -q '| `size_check/c50000_delta25.60/gt230_h040_b025` | 50000 | 0.05 | 25.60 | 11.000 | 11.000 (-) | - |$' "$md" || fail "the size check's other group"
 missing="$(sed -n '/^## Runs still missing/,$p' "$md" | grep '^- ' | tr '\n' '/')"
 [[ "$missing" == "- runout_h040: seed 3/- runout_h050: seeds 2, 3/- runout_h050: seed 1 again, made at 25.60 deg, not the 28.50 deg of the others/- gt230_h050_b025: seeds 1, 2, 3/- gt230_h050_b050: seeds 1, 2, 3/- gt75_h040_b025: seeds 1, 2, 3/- gt75_h040_b050: seeds 1, 2, 3/- gt75_h050_b025: seeds 1, 2, 3/- gt75_h050_b050: seeds 1, 2, 3/" ]] ||
   fail "the missing runs: $missing"
