@@ -59,6 +59,8 @@ fabricate "$runs/runout_h050/seed1" 7.9 25.60 "${three_rows[@]}" # at an older a
 # (one group) and one at 50,000 at another angle (a group of its own).
 k=0; for T in 14.5 14.9 15.3; do k=$((k + 1)); COUNT=50000 fabricate "$tmp/validation/size_check/c50000/gt230_h040_b025/seed$k" "$T" 28.50 "${three_rows[@]}"; done
 COUNT=50000 fabricate "$tmp/validation/size_check/c50000_delta25.60/gt230_h040_b025/seed1" 11.0 25.60 "${three_rows[@]}"
+# More seeds at 25,000 in a set of their own: pooled with the calibration case's for the comparison.
+k=3; for T in 13.8 14.4; do k=$((k + 1)); fabricate "$tmp/validation/size_check/c25000/gt230_h040_b025/seed$k" "$T" 28.50 "${three_rows[@]}"; done
 snapshot() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 -r md5sum; find . -type l -exec ls -l {} \; | awk '{ print $(NF-2), $NF }'); }
 runs_before="$(snapshot "$runs")" repo_before="$(snapshot "$repo/validation")"
 report() { VALIDATION_RUNS="$runs" VALIDATION_REPORT_DIR="$out" VALIDATION_SEEDS=3 VALIDATION_MODE=dem VALIDATION_DELTA= \
@@ -113,9 +115,10 @@ grep -q "| every case within 10 % of its experiment (Table 3) | not yet evaluabl
 # The trend's standard error: sqrt(0.3^2 / 3 + 0.2^2 / 3) / 15.4 = 1.35 points; the mean curves are
 # the same rows (+0.0 %) and have no plateau (-).
 grep -q "| trend with B .* | \*\*met\*\* | geohybrid: +7.8 % (standard error 1.4 points; on the mean curves' T_max +0.0 %, on their plateaus -), Table 6: +7.6 % |" "$md" || fail "the trend"
-# 14.0, 14.1, 14.2 (std 0.1) against 14.5, 14.9, 15.3 (std 0.4): (14.1 - 14.9) / 14.9 = -5.37 %,
-# standard error sqrt(0.1^2 / 3 + 0.4^2 / 3) / 14.9 = 1.60 %.
-grep -q '| `runs/calibration_gt230_h040_b025_delta28.50` | 25000 | 0.05 | 28.50 | 14.000, 14.100, 14.200 | 14.100 (0.100) | -5.4 % (standard error 1.6 %) |$' "$md" || fail "the size check's difference"
+# 14.0, 14.1, 14.2, 13.8, 14.4 (mean 14.1, std sqrt(0.2 / 4) = 0.2236) against 14.5, 14.9, 15.3
+# (std 0.4): (14.1 - 14.9) / 14.9 = -5.37 %, standard error sqrt(0.05 / 5 + 0.16 / 3) / 14.9 = 1.69 %.
+grep -q '| `runs/calibration_gt230_h040_b025_delta28.50` | 25000 | 0.05 | 28.50 | 14.000, 14.100, 14.200 | 14.100 (0.100) | -5.4 % (standard error 1.7 %; the 5 seeds at 25000 against the 3 at 50000) |$' "$md" || fail "the size check's difference"
+grep -q '| `size_check/c25000/gt230_h040_b025` | 25000 | 0.05 | 28.50 | 13.800, 14.400 | 14.100 (0.424) | -5.4 % (standard error 1.7 %; the 5 seeds at 25000 against the 3 at 50000) |$' "$md" || fail "the size check's pooled set"
 grep -q '| `size_check/c50000/gt230_h040_b025` | 50000 | 0.05 | 28.50 | 14.500, 14.900, 15.300 | 14.900 (0.400) | - |$' "$md" || fail "the size check's largest count"
 grep -q '| `size_check/c50000_delta25.60/gt230_h040_b025` | 50000 | 0.05 | 25.60 | 11.000 | 11.000 (-) | - |$' "$md" || fail "the size check's other group"
 missing="$(sed -n '/^## Runs still missing/,$p' "$md" | grep '^- ' | tr '\n' '/')"
