@@ -5,6 +5,7 @@
 // curve files, and a --resume that ends where a run that never stopped ends, bit for bit.
 #include "geohybrid_child.h"
 #include "small_hybrid_pullout_input.h"
+#include "temporary_directory.h"
 #include "text_file.h"
 #include "tiny_pullout_input.h"
 
@@ -31,11 +32,8 @@ namespace
 {
 fs::path interrupt_test_directory()
 {
-  const fs::path d = fs::temp_directory_path() / ("geohybrid_test_app_interrupt_" +
-                                                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return geohybrid::testing::fresh_directory("test_app_interrupt_" +
+                                             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
 }
 
 /// Waits until `ready` holds or the child has ended (false then), polling every millisecond.

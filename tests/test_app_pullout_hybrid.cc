@@ -5,6 +5,7 @@
 #include "apps/pullout_command.h"
 #include "dem/io/checkpoint.h"
 #include "small_hybrid_pullout_input.h"
+#include "temporary_directory.h"
 #include "text_file.h"
 
 #include <gtest/gtest.h>
@@ -24,11 +25,8 @@ namespace
 {
 fs::path test_directory()
 {
-  const fs::path d = fs::temp_directory_path() / ("geohybrid_test_app_pullout_hybrid_" +
-                                                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return geohybrid::testing::fresh_directory("test_app_pullout_hybrid_" +
+                                             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
 }
 
 std::string error_of(const std::string &file, bool resume = false)
