@@ -19,11 +19,13 @@ GEOHYBRID_BUILD_DIR="$root/build-sanitize" GEOHYBRID_BUILD_TARGET=geohybrid_sani
 # Left to the Release stage above, as they run the same code as shorter tests here, only for more
 # steps: four long DEM physics checks (under ASan+UBSan: biaxial peak friction 126 s, tank
 # filling 121 s, the cluster packing's critical step 64 s; the later lifts' growth friction fills
-# the small tank twice); the three hybrid pull-outs of a small tank (a fill of its particle box
+# the small tank twice); the wrap-around fill with nodes 2.5 mm apart (the fill of the test
+# before it, whose nodes are 10 mm apart: 227 s); the fem pull-out at half the rate (the same pull,
+# twice); the three hybrid pull-outs of a small tank (a fill of its particle box
 # and a pull each, the DEM's loops 15-20 times slower here: its set-up runs in
 # ParticleBoxLifts.SmallTankTheFormerDefaultRefusedSetsUp, the coupled steps in the stepper's,
 # the crossing's and the interface's tests); the MPI tests (label mpi: two ranks of Open MPI).
 (cd "$root/build-sanitize" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   LSAN_OPTIONS="suppressions=$root/tests/sanitizer_suppressions.txt" \
   ctest --output-on-failure -j 2 -L '^test_(dem_.*|fem|coupling)$' -LE '^mpi$' \
-    -E '^(Biaxial\.PeakFrictionGrowsWithContactFrictionAndServoHolds|TankFilling\.LayersAtTargetPorosityInEquilibriumUnderGravity|TankFilling\.LaterLiftsStartNearTheFrictionOfTheLiftBelow|TimeStep\.CriticalStepStableForAClusterPacking|HybridPullOut\..*)$')
+    -E '^(Biaxial\.PeakFrictionGrowsWithContactFrictionAndServoHolds|TankFilling\.LayersAtTargetPorosityInEquilibriumUnderGravity|TankFilling\.LaterLiftsStartNearTheFrictionOfTheLiftBelow|TimeStep\.CriticalStepStableForAClusterPacking|WrapAroundFill\.HeldReturnNodeAtALidDoesNotJamTheLift|PulloutProblem\.HalvingThePullRateLeavesTheCurveUnchanged|HybridPullOut\..*)$')
