@@ -6,7 +6,7 @@
 # matters); a test not named costs 0 (the MPI and script tests, declared after this is read, have
 # theirs in CMakeLists.txt). GEOHYBRID_SANITIZE is set by the file that includes this.
 if(GEOHYBRID_SANITIZE)
-  # Under AddressSanitizer + UndefinedBehaviorSanitizer: the DEM's, then the continuum's.
+  # Under AddressSanitizer + UndefinedBehaviorSanitizer: the DEM's, the continuum's, the coupling's.
   set(costs
     WrapAroundFill.ReturnAcrossTwoLiftsLaidInTwoStages 277
     WrapAroundFill.HeldReturnNodeAtALidDoesNotJamTheLift 227
@@ -32,7 +32,11 @@ if(GEOHYBRID_SANITIZE)
     QuasiStatic.RigidBodyAMGSolvesTheLameCylinderInFewerIterations 65
     PulloutProblem.ElasticTankReachesTheInterfaceLimitMonotonically 65
     QuasiStaticPullout.PlateauAgreesWithTheExplicitPullout 63
-    SheetInterface.PulloutReachesTheInterfaceLimit 57)
+    SheetInterface.PulloutReachesTheInterfaceLimit 57
+    ParticleBoxLifts.SmallTankTheFormerDefaultRefusedSetsUp 210
+    InterfaceWall.EnergyOfAnUndampedRunAndTheForceBalance 98
+    GeostaticColumn.EnergyBalanceClosesWithGravityAndDamping 89
+    SheetCrossing.ABarAcrossBothModelsCarriesOneTension 85)
 else()
   set(costs
     PullOutInterrupted.HybridSigtermKeepsTheRowsAndResumesBitForBit 86
