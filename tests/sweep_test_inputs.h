@@ -3,6 +3,7 @@
 // test_app_report.cc): a fem-mode base input on a small tank, whose members take about a second
 // each, a sweep file over it, and their CSV outputs read back by column name.
 #include "apps/sweep_results.h"
+#include "temporary_directory.h"
 #include "text_file.h"
 
 #include <deal.II/base/mpi.h>
@@ -19,19 +20,23 @@ namespace geohybrid::testing
 {
 inline bool is_rank_zero() { return dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0; }
 
-/// A fresh directory geohybrid_test_app_<command>_<test name>, made by rank 0, seen by every rank.
+/// Rank 0's pid on every rank: the ranks of one mpirun share a directory, no other run does.
+inline long rank_zero_pid()
+{
+  long pid = static_cast<long>(::getpid());
+  MPI_Bcast(&pid, 1, MPI_LONG, 0, MPI_COMM_WORLD);
+  return pid;
+}
+
+/// A fresh directory geohybrid_test_app_<command>_<test name>_<pid>, made by rank 0, seen by every rank.
 inline std::filesystem::path fresh_test_directory(const std::string &command)
 {
-  const std::filesystem::path d =
-    std::filesystem::temp_directory_path() /
-    ("geohybrid_test_app_" + command + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  const std::string name = "test_app_" + command + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const long pid = rank_zero_pid();
   if (is_rank_zero())
-    {
-      std::filesystem::remove_all(d);
-      std::filesystem::create_directories(d);
-    }
+    fresh_directory(name, pid);
   MPI_Barrier(MPI_COMM_WORLD);
-  return d;
+  return scratch_path(name, pid);
 }
 
 /// A CSV file's rows (sweep.csv, design.csv) as maps from its header's names to the fields.

@@ -7,8 +7,26 @@
 #include <string>
 #include <system_error>
 
+#include <unistd.h>
+
 namespace geohybrid::testing
 {
+/// geohybrid_<name>_<id> under the system's temporary directory (TMPDIR), emptied and made anew.
+/// `id` is this process's pid (rank 0's under mpirun), so that two test runs at once, of two
+/// checkouts or two ctest, never share a directory; a test removes it once it passed.
+inline std::filesystem::path scratch_path(const std::string &name, long id = static_cast<long>(::getpid()))
+{
+  return std::filesystem::temp_directory_path() / ("geohybrid_" + name + "_" + std::to_string(id));
+}
+
+inline std::filesystem::path fresh_directory(const std::string &name, long id = static_cast<long>(::getpid()))
+{
+  const std::filesystem::path d = scratch_path(name, id);
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
 struct TemporaryDirectory
 {
   std::filesystem::path path;

@@ -4,6 +4,7 @@
 #include "apps/output_guard.h"
 #include "apps/pullout_fem_mode.h"
 #include "dem/laboratory/biaxial_test.h"
+#include "temporary_directory.h"
 #include "text_file.h"
 
 #include <gtest/gtest.h>
@@ -21,11 +22,7 @@ namespace
 {
 fs::path test_directory()
 {
-  const fs::path d = fs::temp_directory_path() /
-                     ("geohybrid_test_app_biaxial_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return geohybrid::testing::fresh_directory("test_app_biaxial_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
 }
 
 std::string write_input(const fs::path &directory, const std::string &extra)

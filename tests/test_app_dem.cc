@@ -3,6 +3,7 @@
 #include "apps/dem_command.h"
 #include "apps/output_guard.h"
 #include "dem/io/particle_csv.h"
+#include "temporary_directory.h"
 
 #include <gtest/gtest.h>
 
@@ -22,11 +23,8 @@ class DemCommand : public ::testing::Test
 protected:
   void SetUp() override
   {
-    directory_ = fs::temp_directory_path() /
-                 ("geohybrid_test_app_dem_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(directory_);
-    fs::create_directories(directory_);
+    directory_ = geohybrid::testing::fresh_directory(std::string("test_app_dem_") +
+                                                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
   void TearDown() override { fs::remove_all(directory_); }
 

@@ -1,6 +1,7 @@
 // Input files: an 'include' names its file relative to the including file, so that an input and
 // the soil fragment beside it (examples/soil/sand1.prm) run from any working directory.
 #include "apps/run_directory.h"
+#include "temporary_directory.h"
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -34,8 +35,7 @@ double friction_angle(dealii::ParameterHandler &prm)
 
 TEST(InputFile, IncludeIsFoundBesideTheIncludingFile)
 {
-  const fs::path d = fs::temp_directory_path() / "geohybrid_test_app_input";
-  fs::remove_all(d);
+  const fs::path d = geohybrid::testing::fresh_directory("test_app_input");
   fs::create_directories(d / "examples" / "soil");
   std::ofstream(d / "examples" / "soil" / "sand.prm") << "subsection Particle contact\n  set friction angle = 30.5\nend\n";
   std::ofstream(d / "examples" / "case.prm") << "# a case\nsubsection Soil\n  include soil/sand.prm   # the soil\nend\n";

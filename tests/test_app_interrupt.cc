@@ -4,7 +4,9 @@
 // process the signal killed (143, 130), no summary.json, a checkpoint, every recorded row in the
 // curve files, and a --resume that ends where a run that never stopped ends, bit for bit.
 #include "geohybrid_child.h"
+#include "hybrid_pullout_contract.h"
 #include "small_hybrid_pullout_input.h"
+#include "temporary_directory.h"
 #include "text_file.h"
 #include "tiny_pullout_input.h"
 
@@ -31,11 +33,8 @@ namespace
 {
 fs::path interrupt_test_directory()
 {
-  const fs::path d = fs::temp_directory_path() / ("geohybrid_test_app_interrupt_" +
-                                                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return geohybrid::testing::fresh_directory("test_app_interrupt_" +
+                                             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
 }
 
 /// Waits until `ready` holds or the child has ended (false then), polling every millisecond.
@@ -134,7 +133,8 @@ TEST(PullOutInterrupted, SigtermKeepsTheRowsAndResumesBitForBit)
 // Hybrid mode shares the pull's loop: a SIGTERM during the coupled pull stops it with 143, a
 // checkpoint (the particles' and the continuum's states), the rows so far and no summary.json;
 // --resume repeats the set-up from the filled box and ends with the straight run's curve, bit for
-// bit. About 40 s of CPU: two fills of the small hybrid tank's box, two pulls of 1 mm.
+// bit; the straight run also meets the hybrid mode's output contract (hybrid_pullout_contract.h).
+// About 50 s of CPU: two fills of the small hybrid tank's box, two pulls of 1 mm.
 TEST(PullOutInterrupted, HybridSigtermKeepsTheRowsAndResumesBitForBit)
 {
   const fs::path d = interrupt_test_directory();
@@ -143,6 +143,8 @@ TEST(PullOutInterrupted, HybridSigtermKeepsTheRowsAndResumesBitForBit)
   const std::string straight = geohybrid::testing::write_small_hybrid_pullout_input(d / "straight"),
                     stopped = geohybrid::testing::write_small_hybrid_pullout_input(d / "stopped");
   ASSERT_EQ(run_geohybrid({"pullout", straight}, d / "straight.log"), 0) << read_text(d / "straight.log");
+  // The straight run is also the one of the hybrid mode's output contract.
+  geohybrid::testing::expect_hybrid_pullout_contract(d / "straight" / "out", straight);
   const std::vector<std::string> expected = lines_of(d / "straight" / "out" / "pullout_curve.csv");
   ASSERT_EQ(expected.size(), 1u + 6u);
 

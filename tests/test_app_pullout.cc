@@ -6,6 +6,7 @@
 #include "apps/pullout_seeds.h"
 #include "apps/resume_check.h"
 #include "dem/io/checkpoint.h"
+#include "temporary_directory.h"
 #include "text_file.h"
 #include "tiny_pullout_input.h"
 
@@ -27,11 +28,7 @@ namespace
 {
 fs::path test_directory()
 {
-  const fs::path d = fs::temp_directory_path() /
-                     ("geohybrid_test_app_pullout_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return geohybrid::testing::fresh_directory("test_app_pullout_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
 }
 
 /// The small tank of test_dem_pullout.cc, pulled 2 mm; the soil from a calibrate fragment.

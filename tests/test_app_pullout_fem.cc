@@ -7,6 +7,7 @@
 #include "apps/compare_command.h"
 #include "apps/pullout_command.h"
 #include "apps/pullout_seeds.h"
+#include "sweep_test_inputs.h"
 #include "text_file.h"
 #include "tiny_pullout_input.h"
 
@@ -28,19 +29,7 @@ namespace
 {
 const double pi = 3.14159265358979323846;
 
-fs::path test_directory(const std::string &suffix = "")
-{
-  const fs::path d = fs::temp_directory_path() /
-                     ("geohybrid_test_app_pullout_fem_" +
-                      std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + suffix);
-  if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-    {
-      fs::remove_all(d);
-      fs::create_directories(d);
-    }
-  MPI_Barrier(MPI_COMM_WORLD);
-  return d;
-}
+fs::path test_directory() { return geohybrid::testing::fresh_test_directory("pullout_fem"); }
 
 /// A 0.6 m x 1 m tank of elastic soil (E = 20 MPa, nu = 0.3), 15.2 kN/m3, 50 mm cells; the
 /// sheet (GT230, delta = 25.6 degrees, nodes every 25 mm) at H = 0.775 m (through the middle of a
@@ -438,6 +427,7 @@ TEST(PullOutSeedsOverRanks, EachRankRunsItsSeedsAndRankZeroAverages)
       const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
       EXPECT_NE(summary.find("\"n_ranks\": " + std::to_string(n_ranks)), std::string::npos) << summary;
       EXPECT_NE(summary.find("\"seeds\": \"3, 4, 5\""), std::string::npos) << summary;
+      fs::remove_all(d);
     }
   MPI_Barrier(MPI_COMM_WORLD);
 }

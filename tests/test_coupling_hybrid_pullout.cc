@@ -120,9 +120,11 @@ TEST(HybridPullOut, SmallTankCarriesTheOverburdenThroughTheBandAndPulls)
   EXPECT_GT(stress.love_weber_above, 0.8 * gamma_H);
   EXPECT_LT(stress.love_weber_above, 1.2 * gamma_H);
 
+  // 1.2 mm: past one face's friction, the check below (measured: T crosses it at 0.8 mm, 1.36 x
+  // one face at 1.2 mm, 1.53 x at most when pulled to 2 mm).
   dem::PullSpec pull;
   pull.rate = 0.005;
-  pull.final_displacement = 0.002;
+  pull.final_displacement = 0.0012;
   pull.record_interval = 0.0002;
   const double mu = std::tan(dem::degrees_to_radians(spec.tank.sheet.interface.friction_angle_deg));
   const std::vector<dem::PullPoint> curve = hybrid.pull(pull, [&](const dem::PullPoint &p) {
@@ -130,7 +132,7 @@ TEST(HybridPullOut, SmallTankCarriesTheOverburdenThroughTheBandAndPulls)
     std::cout << "u " << p.head_displacement << " m: T " << p.head_tension << " N/m; tan(delta) N "
               << mu * parts.normal_force << " N/m" << std::endl;
   });
-  ASSERT_EQ(curve.size(), 11u);
+  ASSERT_EQ(curve.size(), 7u);
   double T_max = 0.0;
   for (const dem::PullPoint &p : curve)
     T_max = std::max(T_max, p.head_tension);

@@ -3,6 +3,7 @@
 // 2 sigma_v tan(delta) L (sigma_v the geostatic stress at the sheet's depth), the curve does not
 // change when the pull rate is halved (quasi-static), and bad input is refused by name.
 #include "fem/pullout_problem.h"
+#include "temporary_directory.h"
 #include "test_fem_support.h"
 
 #include <gtest/gtest.h>
@@ -164,9 +165,7 @@ TEST(PulloutProblem, WritesSnapshotsAtTheirInterval)
   auto p = small_pullout_tank(0.004);
   p.final_displacement = 0.002;
   p.snapshot_interval = 0.001;
-  const auto directory = std::filesystem::temp_directory_path() / "geohybrid_test_fem_pullout_snapshots";
-  std::filesystem::remove_all(directory);
-  std::filesystem::create_directories(directory);
+  const auto directory = geohybrid::testing::fresh_directory("test_fem_pullout_snapshots");
   p.snapshot_directory = directory.string();
   const PulloutResult r = PulloutProblem(tank.mesh, p).run();
   ASSERT_EQ(r.snapshots.size(), 3u); // 0, 1 and 2 mm
