@@ -7,7 +7,9 @@
 // through the same write(2); the limit lies between the size of the files written before the one
 // under test and the size that file would reach, so that it is the one that fails. Or /dev/full
 // (every write fails with ENOSPC) in place of a file, where the command does not refuse it as
-// another run's: sweep.csv in a sweep's directory.
+// another run's: sweep.csv in a sweep's directory. Or, for a file smaller than others written
+// before it (summary.json, a calibration's fragment), a disk full for that file's name only
+// (full_disk_preload.cc): it is created, and every write to it fails with ENOSPC.
 #include "geohybrid_child.h"
 #include "sweep_test_inputs.h"
 #include "temporary_directory.h"
@@ -223,3 +225,19 @@ TEST(FullDiskCommands, ReportStopsAtItsPage)
     {"report", run.string(), "--output", page.string()}, d / "report.log", 8 << 10);
   expect_stopped_at(status, d / "report.log", page, page.parent_path());
 }
+
+// The fem pull-out of sweep_test_inputs.h (about a second) on a disk full for summary.json, its
+// last file (written to a temporary, then renamed). The error named the temporary,
+// summary.json.tmp, and left it behind, empty; now it names summary.json and leaves neither.
+TEST(FullDiskCommands, FemPulloutStopsAtItsSummary)
+{
+  const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
+  const fs::path d = directory.path, out = d / "base_out";
+  const std::string input = geohybrid::testing::write_fem_base_input(d);
+  const int status = geohybrid::testing::run_geohybrid_with_full_files({"pullout", input}, d / "run.log",
+                                                                        "summary.json.tmp,summary.json");
+  expect_stopped_at(status, d / "run.log", out / "summary.json", out);
+  EXPECT_FALSE(fs::exists(out / "summary.json.tmp"));
+  EXPECT_GT(fs::file_size(out / "pullout_curve.csv"), 100u) << "the run itself must have finished";
+}
+
