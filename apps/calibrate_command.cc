@@ -364,7 +364,9 @@ int run_calibrate_command(const std::string &input_file, bool resume)
   const dem::MacroResponse &achieved = final_iteration.macro;
   const std::filesystem::path fragment = out / input.fragment_file;
   {
-    std::ofstream f(fragment);
+    // Whole or absent (dem::write_whole_file): an input that includes an empty or cut fragment
+    // would read the contact laws' defaults without a word.
+    std::ostringstream f;
     f << "# Soil contact micro-parameters calibrated by `geohybrid calibrate " << input_file << "` in "
       << result.iterations.size() << " biaxial campaigns.\n"
       << "# Targets:  peak friction angle " << number(targets.friction_angle_deg, 6) << " +/- "
@@ -392,7 +394,7 @@ int run_calibrate_command(const std::string &input_file, bool resume)
       << "  set restitution coefficient = " << number(particle.restitution) << "\n"
       << "  set bond new contacts = " << (particle.bond_new_contacts ? "true" : "false") << "\n"
       << "end\n";
-    dem::close_checked(f, fragment);
+    dem::write_whole_file(fragment, f.str());
   }
 
   Summary summary;

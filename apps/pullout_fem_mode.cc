@@ -52,7 +52,7 @@ void declare_continuum_parameters(ParameterHandler &prm)
                     "fem mode, implicit solver only: the head displacement of a load step, the largest used (halved "
                     "on non-convergence, grown back after); at most 'Pull/record interval' [m]");
   prm.declare_entry("linear solver", "direct", Patterns::Selection("direct|Krylov"),
-                    "fem mode, implicit solver only: 'direct' (MUMPS LU through PETSc, distributed over the ranks; "
+                    "fem mode, implicit solver only: 'direct' (MUMPS LU through PETSc, each rank factorising the whole matrix, so that runs repeat bit for bit; "
                     "robust while the sheet slides over yielded soil) or 'Krylov' (CG or GMRES with the "
                     "'preconditioner' below; less memory on very large meshes) [-]");
   prm.declare_entry("preconditioner", "BoomerAMG", Patterns::Selection("BoomerAMG|GAMG"),

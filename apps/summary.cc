@@ -38,18 +38,9 @@ void Summary::set(const std::string &key, const std::vector<std::string> &values
 
 void Summary::write(const std::filesystem::path &file) const
 {
-  const std::filesystem::path temporary = file.string() + ".tmp";
-  {
-    std::ofstream out(temporary);
-    // Bytes that are not UTF-8 (a path in another encoding) are replaced rather than refused:
-    // the summary of a finished run must not fail on its output directory's name.
-    out << json_.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
-    dem::close_checked(out, temporary);
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, file, error);
-  if (error)
-    throw std::runtime_error("cannot rename " + temporary.string() + " to " + file.string() + ": " + error.message());
+  // Bytes that are not UTF-8 (a path in another encoding) are replaced rather than refused:
+  // the summary of a finished run must not fail on its output directory's name.
+  dem::write_whole_file(file, json_.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + '\n');
 }
 
 nlohmann::json read_summary(const std::filesystem::path &file)

@@ -24,7 +24,8 @@ public:
   void set(const std::string &key, const std::vector<std::string> &values);
   /// A value that nests (a list of objects: a design's runs).
   void set_json(const std::string &key, nlohmann::json value) { json_[key] = std::move(value); }
-  /// Writes through FILE.tmp and a rename. Throws std::runtime_error naming the file on failure.
+  /// Writes through FILE.tmp and a rename (dem::write_whole_file): a summary.json is whole. Throws
+  /// std::runtime_error naming the file on failure, leaving neither it nor the temporary.
   void write(const std::filesystem::path &file) const;
   const nlohmann::json &json() const { return json_; }
 

@@ -3,6 +3,8 @@
 // backtracking line search on the out-of-balance force.
 #include "quasi_static_solver.h"
 
+#include "fem/redundant_lu.h"
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/petsc_precondition.h>
 #include <deal.II/lac/petsc_solver.h>
@@ -29,12 +31,11 @@ unsigned int QuasiStaticSolver::solve_linear_system(const dealii::AffineConstrai
   if (rhs_norm > 0.0 && settings_.linear_solver.method == LinearSolverSettings::Method::sparse_direct)
     {
       // One LU factorisation of this iteration's tangent and one solve; it reports one iteration.
-      dealii::SolverControl control;
-      dealii::PETScWrappers::SparseDirectMUMPS mumps(control, space_.communicator());
-      mumps.set_symmetric_mode(false);
+      // A whole copy per rank (fem/redundant_lu.h): MUMPS distributed over the ranks gives other
+      // last bits on every run.
       try
         {
-          mumps.solve(tangent_, correction_, newton_rhs_);
+          solve_redundant_lu(tangent_, correction_, newton_rhs_);
         }
       catch (const std::exception &e)
         {

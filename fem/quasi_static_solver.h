@@ -55,7 +55,7 @@ struct NewtonSettings
 };
 
 /// CG (symmetric tangent) or right-preconditioned GMRES (non-associated flow) with BoomerAMG, or
-/// a sparse direct LU factorisation (MUMPS through PETSc, distributed over the ranks).
+/// a sparse direct LU factorisation (MUMPS through PETSc, a whole copy per rank: redundant_lu.h).
 /// Scalar AMG on vector elasticity coarsens poorly with hypre's defaults; a strong threshold of
 /// 0.7 and one level of aggressive coarsening measured 2 to 8 times faster on 2D Q1 and Q2
 /// elasticity (66,000 DoFs) than the default 0.25 without.

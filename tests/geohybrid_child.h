@@ -87,4 +87,17 @@ inline int run_geohybrid_with_file_size_limit(const std::vector<std::string> &ar
   }
   return wait_for(child);
 }
+
+#ifdef GEOHYBRID_FULL_DISK_PRELOAD
+/// run_geohybrid() on a disk full for the files of these base names only (`names`, separated by
+/// commas; full_disk_preload.cc, preloaded into the child): each is created, and every write to it
+/// fails with ENOSPC, whatever its size.
+inline int run_geohybrid_with_full_files(const std::vector<std::string> &arguments, const std::filesystem::path &log,
+                                         const std::string &names)
+{
+  return wait_for(start_geohybrid(arguments, log,
+                                  {std::string("LD_PRELOAD=") + GEOHYBRID_FULL_DISK_PRELOAD,
+                                   "GEOHYBRID_TEST_FULL_FILES=" + names}));
+}
+#endif
 } // namespace geohybrid::testing

@@ -7,7 +7,9 @@
 // through the same write(2); the limit lies between the size of the files written before the one
 // under test and the size that file would reach, so that it is the one that fails. Or /dev/full
 // (every write fails with ENOSPC) in place of a file, where the command does not refuse it as
-// another run's: sweep.csv in a sweep's directory.
+// another run's: sweep.csv in a sweep's directory. Or, for a file smaller than others written
+// before it (summary.json, a calibration's fragment), a disk full for that file's name only
+// (full_disk_preload.cc): it is created, and every write to it fails with ENOSPC.
 #include "geohybrid_child.h"
 #include "sweep_test_inputs.h"
 #include "temporary_directory.h"
@@ -222,4 +224,77 @@ TEST(FullDiskCommands, ReportStopsAtItsPage)
   const int status = geohybrid::testing::run_geohybrid_with_file_size_limit(
     {"report", run.string(), "--output", page.string()}, d / "report.log", 8 << 10);
   expect_stopped_at(status, d / "report.log", page, page.parent_path());
+}
+
+// The fem pull-out of sweep_test_inputs.h (about a second) on a disk full for summary.json, its
+// last file (written to a temporary, then renamed). The error named the temporary,
+// summary.json.tmp, and left it behind, empty; now it names summary.json and leaves neither.
+TEST(FullDiskCommands, FemPulloutStopsAtItsSummary)
+{
+  const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
+  const fs::path d = directory.path, out = d / "base_out";
+  const std::string input = geohybrid::testing::write_fem_base_input(d);
+  const int status = geohybrid::testing::run_geohybrid_with_full_files({"pullout", input}, d / "run.log",
+                                                                        "summary.json.tmp,summary.json");
+  expect_stopped_at(status, d / "run.log", out / "summary.json", out);
+  EXPECT_FALSE(fs::exists(out / "summary.json.tmp"));
+  EXPECT_GT(fs::file_size(out / "pullout_curve.csv"), 100u) << "the run itself must have finished";
+}
+
+namespace
+{
+/// A calibration of 200 clusters at one confinement, 1 % strain (a few seconds), whose loose
+/// tolerances are met at its first campaign: it then writes its fragment and summary.json.
+std::string write_calibrate_input(const fs::path &directory, const fs::path &out)
+{
+  const fs::path file = directory / "calibrate.prm";
+  std::ofstream(file) << "set output directory = " << out.string() << "\n"
+                      << "set threads = 1\n"
+                      << "subsection Sample\n  set number of particles = 200\n  set width = 0.05\n"
+                      << "  set height = 0.08\n  set porosity tolerance = 0.01\nend\n"
+                      << "subsection Test\n  set confining stresses = 20e3\n  set inertial number = 1e-3\n"
+                      << "  set final axial strain = 0.01\n  set record interval = 1e-4\nend\n"
+                      << "subsection Calibration\n  set target friction angle = 30\n"
+                      << "  set target Young modulus = 20e6\n  set friction angle tolerance = 89\n"
+                      << "  set Young modulus tolerance = 1000\n  set maximum iterations = 1\nend\n";
+  return file.string();
+}
+} // namespace
+
+// The calibration's fragment on a full disk: the calibration stops naming it, with no
+// summary.json, and leaves no fragment. An empty one was left behind, which an input including it
+// reads without complaint, as the contact laws' defaults.
+TEST(FullDiskCommands, CalibrateStopsAtItsFragment)
+{
+  const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
+  const fs::path d = directory.path, out = d / "out";
+  const int status = geohybrid::testing::run_geohybrid_with_full_files(
+    {"calibrate", write_calibrate_input(d, out)}, d / "calibrate.log", "calibrated_soil.prm,calibrated_soil.prm.tmp");
+  expect_stopped_at(status, d / "calibrate.log", out / "calibrated_soil.prm", out);
+  EXPECT_FALSE(fs::exists(out / "calibrated_soil.prm"));
+  EXPECT_FALSE(fs::exists(out / "calibrated_soil.prm.tmp"));
+  EXPECT_EQ(geohybrid::testing::lines_of(out / "calibration.csv").size(), 2u) << "header and the one iteration";
+}
+
+// The calibration's table of iterations on a full disk: it stops at the header, before the first
+// campaign, naming it.
+TEST(FullDiskCommands, CalibrateStopsAtItsTable)
+{
+  const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
+  const fs::path d = directory.path, out = d / "out";
+  const int status = geohybrid::testing::run_geohybrid_with_full_files({"calibrate", write_calibrate_input(d, out)},
+                                                                        d / "calibrate.log", "calibration.csv");
+  expect_stopped_at(status, d / "calibrate.log", out / "calibration.csv", out);
+  EXPECT_FALSE(fs::exists(out / "calibrated_soil.prm"));
+}
+
+// The calibration's summary.json on a full disk, after its fragment: as the pull-out's.
+TEST(FullDiskCommands, CalibrateStopsAtItsSummary)
+{
+  const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
+  const fs::path d = directory.path, out = d / "out";
+  const int status = geohybrid::testing::run_geohybrid_with_full_files(
+    {"calibrate", write_calibrate_input(d, out)}, d / "calibrate.log", "summary.json.tmp,summary.json");
+  expect_stopped_at(status, d / "calibrate.log", out / "summary.json", out);
+  EXPECT_FALSE(fs::exists(out / "summary.json.tmp"));
 }

@@ -1,6 +1,7 @@
 #include "checked_output.h"
 
 #include <stdexcept>
+#include <system_error>
 
 namespace geohybrid::dem
 {
@@ -22,5 +23,28 @@ void close_checked(std::ofstream &out, const std::filesystem::path &file)
   out.close();
   if (!out)
     throw std::runtime_error(write_failure_message(file));
+}
+
+void write_whole_file(const std::filesystem::path &file, const std::string &contents)
+{
+  const std::filesystem::path temporary = file.string() + ".tmp";
+  std::error_code error;
+  {
+    std::ofstream out(temporary);
+    out << contents;
+    out.close();
+    if (!out)
+      {
+        std::filesystem::remove(temporary, error);
+        throw std::runtime_error(write_failure_message(file)); // the file the user knows
+      }
+  }
+  std::filesystem::rename(temporary, file, error);
+  if (error)
+    {
+      const std::string why = error.message();
+      std::filesystem::remove(temporary, error);
+      throw std::runtime_error("cannot rename " + temporary.string() + " to " + file.string() + ": " + why);
+    }
 }
 } // namespace geohybrid::dem

@@ -25,4 +25,10 @@ void flush_checked(std::ostream &out, const std::filesystem::path &file);
 
 /// Closes `out`, the stream of `file`; throws as flush_checked() does. For a file written at once.
 void close_checked(std::ofstream &out, const std::filesystem::path &file);
+
+/// Writes `contents` as `file`, whole or not at all: through FILE.tmp and a rename. For a file
+/// whose presence says something (summary.json: the run finished; a calibration's fragment, which
+/// an input includes). On failure the temporary is removed and std::runtime_error names `file`
+/// (write_failure_message), or the rename that failed.
+void write_whole_file(const std::filesystem::path &file, const std::string &contents);
 } // namespace geohybrid::dem
