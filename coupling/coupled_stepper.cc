@@ -48,7 +48,7 @@ const InterfaceCoupling &checked(const fem::ExplicitSolver &continuum, const Int
 /// The weights go on before the band's particles are gathered: the multipliers' matrix needs the
 /// weighted masses.
 BandParticles weighted_band(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
-                            const BandTreatment &treatment)
+                            const BandTreatment &treatment, dem::CouplingAttachment &attachment)
 {
   const double driven_below_weight = treatment.driven_below_weight;
   // The particles past the band (and the band's lightest, on request) are moved by the
@@ -58,10 +58,10 @@ BandParticles weighted_band(dem::DemSystem &particles, fem::ExplicitSolver &cont
   for (std::size_t b = 0; b < movable.n_bodies(); ++b)
     if (band.coordinate(Vec2(movable.x[b], movable.y[b])) >= driven_from)
       movable.fix_body(b);
-  particles.set_energy_weights(band.energy_weights(particles.particles()));
+  attachment.set_energy_weights(movable, band.energy_weights(movable));
   // Before the band's particles are gathered: the multipliers' matrix takes the inertial masses.
   if (treatment.scale_inertia)
-    particles.scale_band_inertia();
+    attachment.scale_band_inertia(movable);
   continuum.set_energy_weight(
     [band](const dealii::Point<fem::dim> &x) { return band.continuum_weight(Vec2(x[0], x[1])); });
   // The longest branch: twice the largest distance from a body's centre to its discs' far edge.
@@ -98,17 +98,17 @@ CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &c
   : particles_(particles)
   , continuum_(continuum)
   , band_geometry_(checked(continuum, band, method))
-  , band_(weighted_band(particles, continuum, band, treatment))
+  , band_(weighted_band(particles, continuum, band, treatment, attachment_))
   , tie_(band_tie(method, *band_, particles, continuum, band))
 {
-  // The multipliers set the tied particles' translation (DemSystem::set_constrained_bodies):
+  // The multipliers set the tied particles' translation (CouplingAttachment::set_constrained_bodies):
   // it and the nodes they interpolate from are left out of the local and mass-proportional
   // damping (the multipliers are solved for the undamped kicks; both are damped through the rest
   // of the models, which they move with). The penalty springs are forces like any other:
   // damping stays everywhere.
   if (std::holds_alternative<LagrangeTie>(tie_))
     {
-      particles.set_constrained_bodies(band_->body);
+      attachment_.set_constrained_bodies(particles.particles(), band_->body);
       std::vector<unsigned int> tied_dofs;
       const BandPoints &points = band_->points;
       for (std::size_t p = 0; p < band_->size(); ++p)
@@ -136,6 +136,22 @@ CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &c
 
 void CoupledStepper::start()
 {
+  // From here on the particles read the attachment (their weighted step first): detached again if
+  // the stepper is not made.
+  particles_.attach(attachment_);
+  try
+    {
+      start_attached();
+    }
+  catch (...)
+    {
+      particles_.detach();
+      throw;
+    }
+}
+
+void CoupledStepper::start_attached()
+{
   dem::DemSystem &particles = particles_;
   fem::ExplicitSolver &continuum = continuum_;
   // One step for both: the smaller stable step, lowered by the penalty or interface springs (Weyl:
@@ -152,11 +168,11 @@ void CoupledStepper::start()
   // it; scaling the band's rotational inertia 4 x more removed the divergence, so a rotational
   // mode of the tied discs, whose translation the multipliers hold, is underestimated. Not
   // derived: a measured margin, 0.8 (1.19 below the divergence).
-  if (particles.band_inertia_scaled())
+  if (attachment_.band_inertia_scaled())
     time_step_ *= scaled_band_step_fraction;
   particles.set_time_step(time_step_);
   continuum.set_time_step(time_step_);
-  particles.set_force_hook([this](dem::ParticleSet &p, double impulse_time) { apply_coupling(p, impulse_time); });
+  attachment_.set_force_hook([this](dem::ParticleSet &p, double impulse_time) { apply_coupling(p, impulse_time); });
   // The forces at t = 0, the coupling's included. The weights of methods 1 and 2 made the
   // particles' forces stale; without weights (method 3) particles evaluated before keep theirs,
   // and the coupling's are added here as the hook would (no drift yet: impulse time dt / 2).
@@ -186,7 +202,7 @@ void CoupledStepper::cross_sheet(std::size_t dem_sheet_index, double rest_length
   // The forces at the current time: the particles' are evaluated (start()), so the segment's
   // force joins them directly; the continuum's sheet takes its share in its next step.
   crossing_->apply(dem_sheet, *continuum_sheet);
-  particles_.set_sheet_force_hook([this](std::vector<dem::SparSheet> &sheets) {
+  attachment_.set_sheet_force_hook([this](std::vector<dem::SparSheet> &sheets) {
     const Clock::time_point start = Clock::now();
     crossing_->apply(sheets[crossing_->dem_sheet_index()], *continuum_.sheet());
     times_.coupling += seconds_since(start);
@@ -195,10 +211,8 @@ void CoupledStepper::cross_sheet(std::size_t dem_sheet_index, double rest_length
 
 CoupledStepper::~CoupledStepper()
 {
-  particles_.set_sheet_force_hook({});
-  particles_.set_force_hook({});
+  particles_.detach();
   continuum_.set_undamped_dofs({});
-  particles_.set_constrained_bodies({});
 }
 
 void CoupledStepper::pass_driven_forces(const dem::ParticleSet &particles)

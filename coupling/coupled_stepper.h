@@ -21,10 +21,11 @@
 // Gravity and damping (quasi-static runs, the geostatic column): both sides keep their own
 // gravity (on the weighted masses: the band's weight is counted once) and their own damping. With
 // the multipliers (method 1), the tied particles and the nodes they interpolate from are exempt
-// from damping (DemSystem::set_constrained_bodies, ExplicitSolver::set_undamped_dofs): the
-// multipliers make their half-step velocities equal for the undamped update, and a damping force
-// added afterwards would open a velocity gap every step. They are damped through the rest of both
-// models (their rotation, which no constraint sets, stays damped). Penalty springs and interface contacts are forces like the others: damped everywhere.
+// from damping (dem::CouplingAttachment::set_constrained_bodies,
+// ExplicitSolver::set_undamped_dofs): the multipliers make their half-step velocities equal for
+// the undamped update, and a damping force added afterwards would open a velocity gap every step.
+// They are damped through the rest of both models (their rotation, which no constraint sets, stays
+// damped). Penalty springs and interface contacts are forces like the others: damped everywhere.
 // Limits (checked, std::invalid_argument): one MPI rank; set up before the continuum steps (the
 // particles may have run before).
 // The diagnostics' total() is the conserved energy of an undamped run without body force: the
@@ -42,6 +43,7 @@
 #include "coupling/coupling_method.h"
 #include "coupling/coupling_tie.h"
 #include "coupling/sheet_crossing.h"
+#include "dem/coupling_attachment.h"
 #include "dem/dem_system.h"
 #include "fem/explicit_solver.h"
 
@@ -102,17 +104,18 @@ struct BandTreatment
   /// (OverlapBand::driven_from; 0: only those past the band) [-].
   double driven_below_weight = 0.0;
   /// Quasi-static runs only: the band's inertia scaled so that its light particles do not lower
-  /// the stable step (DemSystem::scale_band_inertia; statics unchanged, the band's dynamics not
-  /// the weighted ones).
+  /// the stable step (dem::CouplingAttachment::scale_band_inertia; statics unchanged, the band's
+  /// dynamics not the weighted ones).
   bool scale_inertia = false;
 };
 
 class CoupledStepper
 {
 public:
-  /// Ties `particles` and `continuum` (both must outlive the stepper, which must not move: it is
-  /// the particles' force hook). Throws std::invalid_argument as described above, or from the
-  /// band (no particle in it, a particle outside the mesh, a particle in the continuum-only region).
+  /// Ties `particles` and `continuum` (both must outlive the stepper, which must not move: it owns
+  /// the dem::CouplingAttachment the particles are attached to, and detaches them when destroyed).
+  /// Throws std::invalid_argument as described above, or from the band (no particle in it, a
+  /// particle outside the mesh, a particle in the continuum-only region).
   /// Methods 1 and 2 (`method` must not be an InterfaceCoupling: that one has no band).
   /// `treatment`: which of the band's particles are driven, and whether its inertia is scaled.
   CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
@@ -158,11 +161,16 @@ private:
   void apply_coupling(dem::ParticleSet &particles, double impulse_time);
   /// Methods 1 and 2: the driven particles' contact forces passed to the continuum's nodes.
   void pass_driven_forces(const dem::ParticleSet &particles);
-  /// What both constructors end with: the common time step, the hook, the forces at t = 0.
+  /// What both constructors end with: the particles attached, then start_attached(): the common
+  /// time step, the hook, the forces at t = 0.
   void start();
+  void start_attached();
 
   dem::DemSystem &particles_;
   fem::ExplicitSolver &continuum_;
+  /// The weights, the band's inertia, the tied bodies and the hooks: the particles read them while
+  /// the stepper lives. Made before band_, which needs the weighted masses.
+  dem::CouplingAttachment attachment_;
   // Methods 1 and 2 only: method 3 has no band, and every step that only the band needs (the
   // weights, the driven particles) tests band_.
   std::optional<OverlapBand> band_geometry_;

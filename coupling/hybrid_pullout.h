@@ -50,7 +50,7 @@
 //
 // What is left out, on purpose or not yet: without a DEM region length the sheet must lie in the
 // DEM core, one branch clear of the band (`margin` is checked against that); wall contacts of the band's particles (at the front
-// wall, at the base) are not weighted (DemSystem::set_energy_weights); the continuum's walls are
+// wall, at the base) are not weighted (dem::CouplingAttachment::set_energy_weights); the continuum's walls are
 // smooth (the DEM's have the wall friction); one MPI rank. Checkpoints: the filled box (a DEM
 // checkpoint) and, during the pull, the particles' and the continuum's states; a resumed run
 // repeats the set-up from the filled box (deterministic) and takes the states (restore_state).
@@ -95,8 +95,9 @@ struct HybridRegionSpec
   /// stable step then stays within about a third of the particles' own (OverlapBand::driven_from;
   /// with 0 a tank's band took it from 4e-5 s to 1.6e-7 s) [-].
   double driven_below_weight = 0.1;
-  /// The band's inertia scaled (DemSystem::scale_band_inertia): a quasi-static pull-out needs
-  /// the band's statics, not its weighted dynamics, and the step goes back to the particles' own.
+  /// The band's inertia scaled (dem::CouplingAttachment::scale_band_inertia): a quasi-static
+  /// pull-out needs the band's statics, not its weighted dynamics, and the step goes back to the
+  /// particles' own.
   bool scale_band_inertia = true;
   /// Before the coupling, the box's top (if the continuum lies above it) is loaded by the weight
   /// of the soil above it, gamma (fill - y1), through a frictionless lid servo-controlled to that

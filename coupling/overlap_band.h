@@ -101,7 +101,7 @@ public:
     return s > 0.0 && s < width_;
   }
 
-  /// The bodies' band coordinates at their current centres of mass, for DemSystem::set_energy_weights.
+  /// The bodies' band coordinates at their current centres of mass, for dem::CouplingAttachment::set_energy_weights.
   dem::EnergyWeights energy_weights(const dem::ParticleSet &particles) const;
 
 private:

@@ -1,9 +1,9 @@
 // DemSystem (dem_system.h): construction, the order of one step (step(), initialise_forces()),
-// the neighbour lists' rebuild, and the settings changed between steps. The step's parts are
-// beside it, one idea per file: dem_system_time_step.cc (the stable step),
+// the neighbour lists' rebuild, a coupling attached, and the settings changed between steps. The
+// step's parts are beside it, one idea per file: dem_system_time_step.cc (the stable step),
 // dem_system_kick_drift.cc (the body loops), dem_system_pair_forces.cc (the pair loop),
-// dem_system_walls.cc, dem_system_sheets.cc, dem_system_coupling.cc (a coupling's hooks),
-// dem_system_energy.cc (the energy budget), dem_system_state.cc (checkpoint state).
+// dem_system_walls.cc, dem_system_sheets.cc, dem_system_energy.cc (the energy budget),
+// dem_system_state.cc (checkpoint state); a coupling's hooks are coupling_attachment.h's.
 #include "dem_system.h"
 
 #include <algorithm>
@@ -114,6 +114,33 @@ void DemSystem::initialise_forces()
   compute_forces_and_kick();
   time_step_ = dt;
   forces_initialised_ = true;
+}
+
+void DemSystem::attach(CouplingAttachment &coupling)
+{
+  if (coupling_)
+    throw std::logic_error("DEM: a coupling is already attached (detach() it first)");
+  coupling_ = &coupling;
+  coupling.attached_ = true;
+  if (!coupling.energy_weights())
+    return;
+  forces_initialised_ = false; // the forces of the unweighted contacts are stale
+  try
+    {
+      update_time_step(); // the weighted (and perhaps scaled) masses' critical step
+    }
+  catch (...)
+    {
+      detach();
+      throw;
+    }
+}
+
+void DemSystem::detach()
+{
+  if (coupling_)
+    coupling_->attached_ = false;
+  coupling_ = nullptr;
 }
 
 void DemSystem::step()

@@ -26,13 +26,12 @@
 // sheet_contacts.*, called from here. A system without sheets runs exactly as before.
 #include "contact_law.h"
 #include "contact_list.h"
-#include "energy_weights.h"
+#include "coupling_attachment.h"
 #include "particles.h"
 #include "sheet_contacts.h"
 #include "spar_sheet.h"
 #include "wall.h"
 
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,7 +43,7 @@ struct DemSettings
   double local_damping = 0.7;        ///< PFC local damping coefficient alpha [-]
   double time_step = 0.0;            ///< [s]; 0 = safety factor x critical time step
   /// Fraction of the critical time step used when automatic: of the system as it is, set again
-  /// whenever a wall, a sheet, energy weights or a band's scaled inertia change it. 0.8 for the
+  /// whenever a wall, a sheet or an attached coupling's weights change it. 0.8 for the
   /// pull-out, biaxial and calibrate commands; `geohybrid dem` has its own entry (default 0.5).
   double time_step_safety = 0.8;
   double skin = 0.0;                 ///< Verlet skin [m]; 0 = 0.4 x the smallest radius
@@ -197,58 +196,15 @@ public:
   void set_local_damping(double alpha);
   double sheet_local_damping() const { return sheet_local_damping_; }
 
-  /// Bridging-domain energy weights (energy_weights.h; Xiao & Belytschko 2004), for a DEM region
-  /// coupled to a continuum through an overlap band: each body's mass and inertia are multiplied by
-  /// its weight (here, once), each particle-particle contact's force, energy and dissipation by the
-  /// mean weight along its branch (in the force loop, a separate compiled variant: a system
-  /// without weights runs the unweighted loop unchanged). Wall and sheet contacts are not weighted
-  /// (keep walls and sheets out of the band). An automatic time step is lowered to the weighted
-  /// critical step; a step the user chose is re-checked. Throws std::invalid_argument if the
-  /// coordinates do not match the bodies, 'band width' is not positive, a free body has no weight
-  /// left (it lies in the continuum-only region: only fixed bodies, moved by the coupling, may), or
-  /// the step is now unstable. Once only.
-  void set_energy_weights(EnergyWeights weights);
-  /// Density scaling of the band for quasi-static coupled runs: each weighted free body's inertial
-  /// mass and moment of inertia (not its weight, which gravity acts on) are raised from its
-  /// weight to the weight of its stiffest possible contact (largest_contact_weight over a branch),
-  /// so that a band particle's contacts, weighted by up to 4 x its own weight, no longer set a
-  /// stable step below the unweighted particles' (measured: 7.9e-6 s against 1.7e-5 s on a
-  /// pull-out tank). Statics are unchanged (forces and weights are); the dynamics of the band are
-  /// not the weighted ones: for damped runs to rest, not for waves or energy balances (energy()
-  /// counts the band's kinetic energy with the scaled masses). Returns the largest factor. Throws
-  /// std::logic_error without weights, or if called twice. An automatic time step is raised
-  /// back to the new critical step.
-  double scale_band_inertia();
-  bool band_inertia_scaled() const { return !inertia_scale_.empty(); }
-  /// nullptr without weights.
-  const EnergyWeights *energy_weights() const { return weighted_ ? &energy_weights_ : nullptr; }
-
-  /// A function called once per force evaluation, after every contact, wall and sheet force and
-  /// before the second half kick: it may add external forces to the bodies (a coupling's forces).
-  /// Its second argument is the time over which these forces will act on the bodies' current
-  /// velocities before the next drift: the time step (second half kick, then the next first half
-  /// kick), or half of it at the first evaluation (initialise_forces(), velocities at t = 0).
-  /// Forces added here count in the unbalanced force but not in the energy budget: the caller
-  /// books their work. An empty function (the default) costs one test per step.
-  using ForceHook = std::function<void(ParticleSet &particles, double impulse_time)>;
-  void set_force_hook(ForceHook hook) { force_hook_ = std::move(hook); }
-  /// A function called once per force evaluation, after the sheets' node forces are restarted
-  /// (weight and loads) and before their segments', contacts' and damping forces and their kick:
-  /// it may add forces to the sheets' nodes (fx, fy), as the segment that joins a sheet to the
-  /// rest of its chain in a continuum does (coupling/sheet_crossing.h). The nodes are at the new
-  /// positions. Not in the energy budget: the caller books the work.
-  using SheetForceHook = std::function<void(std::vector<SparSheet> &sheets)>;
-  void set_sheet_force_hook(SheetForceHook hook) { sheet_force_hook_ = std::move(hook); }
-
-  /// Bodies whose translation a coupling's constraint sets (the bridging domain's tied
-  /// particles, coupling/lagrange_tie.h: their velocity is the continuum's). Local damping leaves
-  /// their translation alone: the multipliers are solved for the undamped kick, and a damping
-  /// force added after them would break the constraint (they are damped through the continuum
-  /// they follow). Their rotation, which no constraint sets, stays damped. Indices of bodies; an
-  /// empty list ends the exemption. A system with such bodies runs a separate compiled variant of
-  /// the damped kick; the others run the same code as before. Throws std::invalid_argument for an
-  /// index out of range or a fixed body.
-  void set_constrained_bodies(const std::vector<std::uint32_t> &bodies);
+  /// Attaches a coupling to a continuum (coupling_attachment.h: energy weights, the band's scaled
+  /// inertia, constrained bodies, force hooks), read from the next force evaluation on until
+  /// detach(); it must stay alive and in place until then. With energy weights, the forces are
+  /// evaluated again at the next step, and an automatic time step is set again from the weighted
+  /// system (a step the user chose is re-checked: std::invalid_argument, and nothing attached, if
+  /// it is now unstable). Throws std::logic_error if one is attached already.
+  void attach(CouplingAttachment &coupling);
+  /// The system runs uncoupled again (its particles keep the masses the weights gave them).
+  void detach();
 
   /// While on, a touching contact between two bodies that are fixed and at rest, and were so at
   /// its last evaluation too, is not evaluated again: its force cannot change, and stays stored
@@ -345,16 +301,9 @@ private:
   EnergyBudget accumulated_; ///< only the dissipated terms and boundary work are used
   double sheet_local_damping_ = -1.0; ///< negative: settings_.local_damping
 
-  // Coupling (set_energy_weights, set_force_hook): unused by an uncoupled system.
-  EnergyWeights energy_weights_;
-  bool weighted_ = false;
-  SoaVector<double> damping_scale_; ///< per body 1, or 0 if constrained (set_constrained_bodies); empty: none
-  SoaVector<double> inertia_scale_;  ///< per body inertial / gravitational mass (scale_band_inertia); empty: none
-  /// The largest weight a particle-particle contact of body b can carry (energy weights set;
-  /// `largest_radius`: the largest disc's).
-  double largest_contact_weight(std::size_t b, double largest_radius) const;
-  ForceHook force_hook_;
-  SheetForceHook sheet_force_hook_;
+  CouplingAttachment *coupling_ = nullptr; ///< attach(); nullptr: uncoupled
+  /// Whether a coupling with energy weights is attached (the weighted variants of the loops).
+  bool weighted() const { return coupling_ && coupling_->energy_weights(); }
   double first_step_ = 0.0; ///< the step initialise_forces() prepares (its own step length is 0)
 };
 

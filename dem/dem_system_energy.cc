@@ -34,12 +34,13 @@ double deterministic_sum(const SoaVector<double> &values, int n_threads)
 EnergyBudget DemSystem::energy() const
 {
   const ParticleSet &p = particles_;
+  const EnergyWeights *const weights = coupling_ ? coupling_->energy_weights() : nullptr;
   EnergyBudget e = accumulated_;
   for (std::size_t b = 0; b < p.n_bodies(); ++b)
     {
       if (p.inverse_mass[b] == 0.0)
         continue;
-      const double scale = inertia_scale_.empty() ? 1.0 : inertia_scale_[b];
+      const double scale = coupling_ ? coupling_->inertia_scale(b) : 1.0;
       e.kinetic += scale * (0.5 * p.mass[b] * (p.vx[b] * p.vx[b] + p.vy[b] * p.vy[b]) +
                             0.5 * p.inertia[b] * p.omega[b] * p.omega[b]);
       e.gravitational -= p.mass[b] * (settings_.gravity.x() * p.x[b] + settings_.gravity.y() * p.y[b]);
@@ -48,8 +49,8 @@ EnergyBudget DemSystem::energy() const
     if (pairs_.state[q].touching)
       {
         const double stored = particle_law_.elastic_energy(pairs_.elastic_normal_force[q], pairs_.state[q].tangential_force);
-        e.elastic += weighted_ ? energy_weights_.contact_weight(p.disc_body[pairs_.disc_i[q]], p.disc_body[pairs_.disc_j[q]]) * stored
-                               : stored;
+        e.elastic += weights ? weights->contact_weight(p.disc_body[pairs_.disc_i[q]], p.disc_body[pairs_.disc_j[q]]) * stored
+                             : stored;
       }
   for (std::size_t w = 0; w < walls_.size(); ++w)
     for (std::size_t q = 0; q < wall_contacts_[w].disc.size(); ++q)

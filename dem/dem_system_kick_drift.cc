@@ -18,7 +18,7 @@ struct BodyLoopInput
 {
   double dt = 0.0, alpha = 0.0, gx = 0.0, gy = 0.0;
   double *damping_fx = nullptr, *damping_fy = nullptr, *damping_torque = nullptr, *scratch = nullptr;
-  const double *damping_scale = nullptr; ///< per body 1 or 0 (set_constrained_bodies), or none
+  const double *damping_scale = nullptr; ///< per body 1 or 0 (constrained bodies: coupling_attachment.h), or none
   const double *reference_x = nullptr, *reference_y = nullptr; ///< disc positions at the last rebuild
 };
 
@@ -230,10 +230,11 @@ void DemSystem::final_kick(std::size_t begin, std::size_t end)
   in.damping_fy = damping_fy_.data();
   in.damping_torque = damping_torque_.data();
   in.scratch = body_scratch_.data();
-  in.damping_scale = damping_scale_.data();
+  const SoaVector<double> *constrained = coupling_ ? &coupling_->damping_scale() : nullptr;
+  in.damping_scale = constrained ? constrained->data() : nullptr;
   if (in.alpha == 0.0)
     final_kick_range<false, false>(particles_, in, begin, end);
-  else if (!damping_scale_.empty())
+  else if (constrained && !constrained->empty())
     {
       if (settings_.track_energy)
         final_kick_range<true, true, true>(particles_, in, begin, end);

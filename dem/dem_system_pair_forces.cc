@@ -16,7 +16,7 @@ void DemSystem::compute_forces_and_kick()
   // combination, so that a run without them does none of their work per contact.
   // Energy weights (a coupled region) are a third such switch.
   const bool dashpot = particle_law_.has_dashpot();
-  if (weighted_)
+  if (weighted())
     {
       if (settings_.track_energy)
         dashpot ? compute_forces_and_kick_for<true, true, true>() : compute_forces_and_kick_for<true, false, true>();
@@ -47,6 +47,7 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
   // (set_skip_contacts_between_fixed_bodies); none before the first kick has counted them.
   const bool skip_fixed = skip_fixed_contacts_ && steps_at_rest_.size() == p.n_bodies();
   const std::uint8_t *const steps_at_rest = steps_at_rest_.data();
+  [[maybe_unused]] const EnergyWeights *const weights = weighted ? coupling_->energy_weights() : nullptr;
 
   // One contact: the force on disc i, stored per pair, and the moments on both bodies.
   // Returns false for a pair that is apart (and not bonded): its force is zero.
@@ -94,7 +95,7 @@ __attribute__((noinline)) std::uint64_t DemSystem::pair_range(std::size_t begin,
     [[maybe_unused]] double weight = 1.0;
     if constexpr (weighted)
       {
-        weight = energy_weights_.contact_weight(bi, bj);
+        weight = weights->contact_weight(bi, bj);
         force_on_i *= weight;
       }
     c.force_x[q] = force_on_i.x();
@@ -195,7 +196,8 @@ void DemSystem::compute_forces_and_kick_for()
   // their pairs) and the second half kick. With several chunks and no sheets, all of it runs in
   // one parallel region; with sheets, their forces come between the walls and the kick, outside.
   std::uint64_t broken = 0;
-  const bool one_region = c.n_chunks > 1 && sheets_.empty() && !force_hook_;
+  const bool force_hook = coupling_ && coupling_->force_hook(); // a coupling's forces come before the kick
+  const bool one_region = c.n_chunks > 1 && sheets_.empty() && !force_hook;
   if (c.n_chunks == 1) // outside a parallel region the compiler optimises the loop better
     broken = pair_range<track_energy, with_dashpot, weighted, false>(0, c.size(), 0);
   else
@@ -230,12 +232,12 @@ void DemSystem::compute_forces_and_kick_for()
         sheet.start_forces(settings_.gravity);
       compute_wall_forces();
       book_wall_work();
-      if (sheet_force_hook_)
-        sheet_force_hook_(sheets_);
+      if (coupling_ && coupling_->sheet_force_hook())
+        coupling_->sheet_force_hook()(sheets_);
       if (!sheets_.empty())
         compute_sheet_forces_and_kick(); // adds the disc-sheet forces to the bodies before their kick
-      if (force_hook_)
-        force_hook_(particles_, forces_initialised_ ? time_step_ : 0.5 * first_step_);
+      if (force_hook)
+        coupling_->force_hook()(particles_, forces_initialised_ ? time_step_ : 0.5 * first_step_);
       const int n_threads = settings_.n_threads;
 #pragma omp parallel num_threads(n_threads) if (n_threads > 1)
       {

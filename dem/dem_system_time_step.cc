@@ -37,7 +37,8 @@ double DemSystem::critical_time_step() const
       ks_max = std::max(ks_max, law.shear_stiffness());
     }
   const ParticleSet &p = particles_;
-  const double largest_radius = weighted_ ? detail::largest_disc_radius(p) : 0.0;
+  const bool with_weights = weighted();
+  const double largest_radius = with_weights ? detail::largest_disc_radius(p) : 0.0;
   double dt = std::numeric_limits<double>::infinity();
   for (std::size_t b = 0; b < p.n_bodies(); ++b)
     {
@@ -56,9 +57,10 @@ double DemSystem::critical_time_step() const
           rotational_stiffness +=
             max_contacts_per_disc * (ks_max * (radius2 + 0.5 * offset2) + kn_max * 0.5 * offset2);
         }
-      // With energy weights the mass is already weighted (and perhaps scaled: scale_band_inertia);
-      // the contacts' springs are weighted by at most largest_contact_weight.
-      const double stiffness_weight = weighted_ ? largest_contact_weight(b, largest_radius) : 1.0;
+      // With energy weights the mass is already weighted (and perhaps scaled:
+      // CouplingAttachment::scale_band_inertia); the contacts' springs by at most
+      // largest_contact_weight.
+      const double stiffness_weight = with_weights ? coupling_->largest_contact_weight(p, b, largest_radius) : 1.0;
       const double omega2_translation = stiffness_weight * n_contacts * (kn_max + ks_max) * p.inverse_mass[b];
       const double omega2_rotation = stiffness_weight * 2.0 * rotational_stiffness * p.inverse_inertia[b];
       dt = std::min(dt, 2.0 / std::sqrt(std::max(omega2_translation, omega2_rotation)));

@@ -55,6 +55,15 @@ void BoundaryConditions::validate(const dealii::Triangulation<dim> &mesh, const 
       check_components(p.pressure.get(), 1, p.boundary_id, "pressure");
     }
 }
+
+void BoundaryConditions::set_load_time(double time)
+{
+  for (auto &t : tractions)
+    t.traction->set_time(time);
+  for (auto &p : pressures)
+    p.pressure->set_time(time);
+}
+
 void BoundaryConditions::add_boundary_loads(const dealii::DoFHandler<dim>::active_cell_iterator &cell,
                                             dealii::FEFaceValues<dim> &face_values,
                                             dealii::Vector<double> &cell_external) const

@@ -52,6 +52,10 @@ struct BoundaryConditions
   /// has the wrong number of components, or a displacement constrains no component.
   void validate(const dealii::Triangulation<dim> &mesh, const std::string &where) const;
 
+  /// Sets the (pseudo-)time of the tractions' and pressures' functions, at which
+  /// add_boundary_loads evaluates them.
+  void set_load_time(double time);
+
   /// Adds the work-equivalent nodal forces of the tractions and pressures on the boundary faces
   /// of `cell` to `cell_external` (the loads' functions at the time last set on them).
   /// `face_values` needs values, quadrature points, normal vectors and JxW.

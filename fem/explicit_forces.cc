@@ -203,10 +203,7 @@ void ExplicitSolver::assemble_external_force(double time)
   added_force_ = 0.0;
   if (!boundary_conditions_.tractions.empty() || !boundary_conditions_.pressures.empty())
     {
-      for (auto &t : boundary_conditions_.tractions)
-        t.traction->set_time(time);
-      for (auto &p : boundary_conditions_.pressures)
-        p.pressure->set_time(time);
+      boundary_conditions_.set_load_time(time);
       const auto &fe = space_.fe();
       dealii::FEFaceValues<dim> face_values(space_.mapping(), fe, space_.face_quadrature(),
                                             dealii::update_values | dealii::update_quadrature_points |

@@ -187,10 +187,7 @@ void QuasiStaticSolver::assemble(double time, const dealii::AffineConstraints<do
   tangent_ = 0.0;
   for (auto *v : {&newton_rhs_, &residual_, &internal_force_, &external_force_})
     *v = 0.0;
-  for (auto &t : boundary_conditions_.tractions)
-    t.traction->set_time(time);
-  for (auto &p : boundary_conditions_.pressures)
-    p.pressure->set_time(time);
+  boundary_conditions_.set_load_time(time);
 
   const auto &fe = space_.fe();
   dealii::FEValues<dim> fe_values(space_.mapping(), fe, space_.cell_quadrature(),

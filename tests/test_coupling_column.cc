@@ -55,7 +55,7 @@ TEST(GeostaticColumn, VerticalStressIsTheWeightAboveAcrossTheBandWithPenalty)
   EXPECT_LT(std::abs(record.jump_across_band()), 0.02);
 }
 
-// The band's inertia scaled (a quasi-static run's choice, DemSystem::scale_band_inertia): the
+// The band's inertia scaled (a quasi-static run's choice, dem::CouplingAttachment::scale_band_inertia): the
 // step goes back to the unweighted particles' bound and the statics stay within the same 2 %.
 TEST(GeostaticColumn, ScalingTheBandsInertiaKeepsTheStressAndRaisesTheStep)
 {

@@ -26,6 +26,7 @@ struct CrossingBar
 {
   Mesh mesh{MPI_COMM_WORLD};
   std::unique_ptr<fem::ExplicitSolver> continuum;
+  dem::CouplingAttachment attachment; ///< the crossing's hook, as the coupled stepper's: outlives the particles
   std::unique_ptr<dem::DemSystem> particles;
   std::unique_ptr<coupling::SheetCrossing> crossing;
   std::size_t n_dem_nodes_before_cut = 0;
@@ -79,9 +80,10 @@ struct CrossingBar
     particles->initialise_forces();
     crossing = std::make_unique<coupling::SheetCrossing>(particles->sheets()[0], 0, *continuum->sheet(), spacing);
     crossing->apply(particles->sheets()[0], *continuum->sheet());
-    particles->set_sheet_force_hook([this](std::vector<dem::SparSheet> &sheets) {
+    attachment.set_sheet_force_hook([this](std::vector<dem::SparSheet> &sheets) {
       crossing->apply(sheets[0], *continuum->sheet());
     });
+    particles->attach(attachment);
   }
   /// As the coupled stepper: the continuum first, then the particles (whose sheet hook joins them).
   void step()

@@ -893,9 +893,9 @@ TEST(ParticleOrder, SpatialSortKeepsBodiesAndBringsNeighboursClose)
   EXPECT_THROW(spatially_sorted(shuffled, 0.0), std::invalid_argument);
 }
 
-// Coupling hooks (issue 6): energy weights scale a body's mass by its weight and a contact's
-// force, stored energy and dissipation by the mean weight along its branch; the force hook adds
-// forces before the second half kick.
+// Coupling hooks (issue 6), attached to a system as a CouplingAttachment: energy weights scale a
+// body's mass by its weight and a contact's force, stored energy and dissipation by the mean weight
+// along its branch; the force hook adds forces before the second half kick.
 TEST(EnergyWeights, ScaleMassesAndContactForcesByTheBranchMean)
 {
   // Two discs 1 cm across overlapping by 1 um, the band (8 mm wide) starting between them.
@@ -920,7 +920,11 @@ TEST(EnergyWeights, ScaleMassesAndContactForcesByTheBranchMean)
   weights.body_band_coordinate[0] = s0;
   weights.body_band_coordinate[1] = s1;
   EnergyWeights past_the_band = weights;
-  weighted.set_energy_weights(weights);
+  CouplingAttachment coupling;
+  coupling.set_energy_weights(weighted.particles(), weights);
+  EXPECT_THROW(coupling.set_energy_weights(weighted.particles(), weights), std::invalid_argument); // once
+  weighted.attach(coupling);
+  EXPECT_THROW(weighted.attach(coupling), std::logic_error);
   plain.initialise_forces();
   weighted.initialise_forces();
   // Mean of 1 - clamp(s / w) along the branch: 4 mm at 1, then s1 of the ramp at 1 - s1 / (2 w).
@@ -937,12 +941,17 @@ TEST(EnergyWeights, ScaleMassesAndContactForcesByTheBranchMean)
   // A free body with no weight left (past the band's continuum edge) is refused.
   past_the_band.body_band_coordinate[1] = width + 0.001;
   DemSystem past = make();
-  EXPECT_THROW(past.set_energy_weights(past_the_band), std::invalid_argument);
+  CouplingAttachment refused;
+  EXPECT_THROW(refused.set_energy_weights(past.particles(), past_the_band), std::invalid_argument);
+  // Detached, the system runs its unweighted contacts again.
+  weighted.detach();
+  EXPECT_LT(weighted.critical_time_step(), plain.critical_time_step()); // the masses stay weighted
+  EXPECT_NEAR(weighted.energy().elastic, plain.energy().elastic, 1e-12 * plain.energy().elastic);
 }
 
-// The band's density scaling (DemSystem::scale_band_inertia): the light body's inertial mass is
-// raised to its stiffest contact's weight, its weight (gravity) is not, and the critical step
-// goes back to the unweighted pair's.
+// The band's density scaling (CouplingAttachment::scale_band_inertia): the light body's inertial
+// mass is raised to its stiffest contact's weight, its weight (gravity) is not, and the critical
+// step goes back to the unweighted pair's.
 TEST(EnergyWeights, BandInertiaScalingKeepsTheWeightAndRestoresTheStep)
 {
   const double r = 0.005, width = 0.008, g = 9.81;
@@ -961,12 +970,20 @@ TEST(EnergyWeights, BandInertiaScalingKeepsTheWeightAndRestoresTheStep)
   weights.body_band_coordinate.resize(2);
   weights.body_band_coordinate[0] = -0.004;    // weight 1
   weights.body_band_coordinate[1] = 0.006;     // weight 1 - 0.006 / 0.008 = 0.25
-  EXPECT_THROW(scaled.scale_band_inertia(), std::logic_error); // no weights yet
-  scaled.set_energy_weights(weights);
-  const double weighted_step = scaled.critical_time_step();
+  CouplingAttachment coupling, weights_only;
+  EXPECT_THROW(coupling.scale_band_inertia(scaled.particles()), std::logic_error); // no weights yet
+  coupling.set_energy_weights(scaled.particles(), weights);
+  DemSystem weighted = make();
+  weights_only.set_energy_weights(weighted.particles(), weights);
+  weighted.attach(weights_only);
+  const double weighted_step = weighted.critical_time_step();
   // Body 1's stiffest contact reaches 2 r = 10 mm towards the core: s = -0.004, weight 1.
-  EXPECT_NEAR(scaled.scale_band_inertia(), 4.0, 1e-12);
-  EXPECT_THROW(scaled.scale_band_inertia(), std::logic_error);
+  EXPECT_NEAR(coupling.scale_band_inertia(scaled.particles()), 4.0, 1e-12);
+  EXPECT_THROW(coupling.scale_band_inertia(scaled.particles()), std::logic_error);
+  scaled.attach(coupling);
+  EXPECT_TRUE(coupling.band_inertia_scaled());
+  // Attached, the masses stay those its time step was set for.
+  EXPECT_THROW(weights_only.set_energy_weights(weighted.particles(), weights), std::logic_error);
   const ParticleSet &p = scaled.particles();
   const double m = plain.particles().mass[1];
   EXPECT_NEAR(p.mass[1], 0.25 * m, 1e-12 * m);                // the weight gravity acts on
@@ -991,10 +1008,12 @@ TEST(EnergyWeights, ForceHookActsBeforeTheSecondHalfKick)
   DemSystem system(p, LinearContactLaw(), s);
   std::vector<double> impulse_times;
   const double force = 2.0; // N/m along x
-  system.set_force_hook([&](ParticleSet &particles, double impulse_time) {
+  CouplingAttachment coupling;
+  coupling.set_force_hook([&](ParticleSet &particles, double impulse_time) {
     particles.fx[0] += force;
     impulse_times.push_back(impulse_time);
   });
+  system.attach(coupling);
   system.run_steps(10);
   // A constant force: v = F t / m after 10 steps, x = F t^2 / (2 m) (velocity Verlet is exact here).
   const double m = system.particles().mass[0], dt = system.time_step(), t = 10 * dt;
@@ -1018,17 +1037,19 @@ TEST(LocalDamping, ExemptBodiesFallFreely)
   s.local_damping = 0.7;
   s.time_step = 1e-5;
   DemSystem system(p, LinearContactLaw(), s);
-  system.set_constrained_bodies({0});
+  CouplingAttachment coupling;
+  coupling.set_constrained_bodies(system.particles(), {0});
+  system.attach(coupling);
   system.initialise_forces();
   for (int n = 0; n < 100; ++n)
     system.step();
   const double t = 100 * 1e-5;
   EXPECT_NEAR(system.particles().vy[0], -9.81 * t, 1e-12);
   EXPECT_NEAR(system.particles().vy[1], -(1.0 - 0.7) * 9.81 * t, 0.02 * 9.81 * t);
-  system.set_constrained_bodies({}); // damped again (from the second half kick on: the first step's
-  system.step();                   // first half kick still has no damping force)
+  coupling.set_constrained_bodies(system.particles(), {}); // damped again (from the second half kick on:
+  system.step();                                           // the first step's first half kick has none)
   const double v0 = system.particles().vy[0];
   system.step();
   EXPECT_NEAR(system.particles().vy[0] - v0, -(1.0 - 0.7) * 9.81 * 1e-5, 1e-12);
-  EXPECT_THROW(system.set_constrained_bodies({2}), std::invalid_argument);
+  EXPECT_THROW(coupling.set_constrained_bodies(system.particles(), {2}), std::invalid_argument);
 }

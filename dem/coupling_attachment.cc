@@ -1,7 +1,7 @@
-// What a coupling to a continuum changes in the system: the bridging domain's energy weights,
-// the band's scaled inertia and the bodies whose translation a constraint sets. An uncoupled
-// system never calls these.
-#include "dem_system.h"
+// What a coupling to a continuum changes in a particle system: the bridging domain's energy
+// weights, the band's scaled inertia and the bodies whose translation a constraint sets. An
+// uncoupled system never meets these.
+#include "coupling_attachment.h"
 
 #include "dem_system_detail.h"
 
@@ -12,15 +12,22 @@
 
 namespace geohybrid::dem
 {
-void DemSystem::set_energy_weights(EnergyWeights weights)
+void CouplingAttachment::refuse_when_attached(const char *what) const
 {
+  if (attached_)
+    throw std::logic_error(std::string("DEM: ") + what +
+                           " after the coupling is attached: they change the masses its time step was set for");
+}
+
+void CouplingAttachment::set_energy_weights(ParticleSet &p, EnergyWeights weights)
+{
+  refuse_when_attached("energy weights set");
   const std::string where = "DEM energy weights: ";
   if (weighted_)
     throw std::invalid_argument(where + "the weights are already set");
   if (!(weights.band_width > 0.0) || !std::isfinite(weights.band_width))
     throw std::invalid_argument(where + "parameter 'band width' = " + std::to_string(weights.band_width) +
                                 " m must be positive");
-  ParticleSet &p = particles_;
   if (weights.body_band_coordinate.size() != p.n_bodies())
     throw std::invalid_argument(where + std::to_string(weights.body_band_coordinate.size()) +
                                 " band coordinates for " + std::to_string(p.n_bodies()) + " bodies");
@@ -46,47 +53,42 @@ void DemSystem::set_energy_weights(EnergyWeights weights)
     }
   energy_weights_ = std::move(weights);
   weighted_ = true;
-  forces_initialised_ = false; // the forces of the unweighted contacts are stale
-  update_time_step();
 }
 
-double DemSystem::largest_contact_weight(std::size_t b, double largest_radius) const
+double CouplingAttachment::largest_contact_weight(const ParticleSet &p, std::size_t b, double largest_radius) const
 {
   // The weight at the far end of the longest branch: twice the largest disc radius beyond the
   // body's farthest disc.
-  const ParticleSet &p = particles_;
   double reach = 0.0;
   for (std::uint32_t d = p.first_disc[b]; d < p.first_disc[b] + p.n_discs[b]; ++d)
     reach = std::max(reach, std::hypot(p.disc_offset_x[d], p.disc_offset_y[d]) + 2.0 * largest_radius);
   return energy_weights_.largest_contact_weight(b, reach);
 }
 
-double DemSystem::scale_band_inertia()
+double CouplingAttachment::scale_band_inertia(ParticleSet &p)
 {
+  refuse_when_attached("the band's inertia scaled");
   if (!weighted_)
     throw std::logic_error("DEM: scale_band_inertia needs the energy weights (set_energy_weights)");
   if (!inertia_scale_.empty())
     throw std::logic_error("DEM: the band's inertia is already scaled");
-  ParticleSet &p = particles_;
   inertia_scale_.assign(p.n_bodies(), 1.0);
   const double largest_radius = detail::largest_disc_radius(p);
   double largest = 1.0;
   for (std::size_t b = 0; b < p.n_bodies(); ++b)
     if (p.inverse_mass[b] != 0.0)
       {
-        const double factor = std::max(1.0, largest_contact_weight(b, largest_radius) / energy_weights_.body_weight(b));
+        const double factor = std::max(1.0, largest_contact_weight(p, b, largest_radius) / energy_weights_.body_weight(b));
         inertia_scale_[b] = factor;
         p.inverse_mass[b] /= factor;
         p.inverse_inertia[b] /= factor;
         largest = std::max(largest, factor);
       }
-  update_time_step();
   return largest;
 }
 
-void DemSystem::set_constrained_bodies(const std::vector<std::uint32_t> &bodies)
+void CouplingAttachment::set_constrained_bodies(const ParticleSet &p, const std::vector<std::uint32_t> &bodies)
 {
-  ParticleSet &p = particles_;
   const std::size_t nb = p.n_bodies();
   if (bodies.empty())
     damping_scale_ = SoaVector<double>();
