@@ -22,6 +22,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 namespace geohybrid::apps
 {
@@ -51,7 +52,9 @@ std::string write_continuum_fragment(const std::filesystem::path &file, const de
     return c.invalid_reason;
   if (c.poisson_ratio > 0.49) // the largest 'Continuum/Poisson ratio' geohybrid pullout takes
     return "its plane-strain Poisson ratio " + number(c.poisson_ratio, 4) + " is above 0.49";
-  std::ofstream f(file);
+  // Whole or absent (dem::write_whole_file): a pull-out's input includes this file, and a cut one
+  // would read as a continuum of default entries.
+  std::ostringstream f;
   f << "# The continuum soil with the biaxial response of the DEM soil of `geohybrid biaxial " << input_file << "`:\n"
     << "# plane strain, E = E_2D (1 - nu^2) and nu = nu_2D / (1 + nu_2D) from the biaxial's E_2D = "
     << number(r.young_modulus, 6) << " Pa and nu_2D = " << number(r.poisson_ratio, 4) << ",\n"
@@ -67,7 +70,7 @@ std::string write_continuum_fragment(const std::filesystem::path &file, const de
     << "  set cohesion = " << number(c.cohesion) << "\n"
     << "  set dilatancy angle = " << number(c.dilatancy_angle_deg) << "\n"
     << "end\n";
-  dem::close_checked(f, file);
+  dem::write_whole_file(file, f.str());
   return "";
 }
 

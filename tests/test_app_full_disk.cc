@@ -89,6 +89,27 @@ TEST(FullDiskCommands, BiaxialStopsAtItsCurve)
   expect_stopped_at(status, d / "biaxial.log", out / "biaxial_20kPa.csv", out);
 }
 
+// The biaxial's continuum fragment (continuum_soil.prm, which a fem or hybrid pull-out includes)
+// on a disk full for its name: the run stops naming it, with no summary.json, and leaves no
+// fragment. An empty one was left behind, which an input including it reads as the continuum's
+// defaults.
+TEST(FullDiskCommands, BiaxialStopsAtItsContinuumFragment)
+{
+  const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
+  const fs::path d = directory.path, out = d / "out";
+  std::ofstream(d / "biaxial.prm") << "set output directory = " << out.string() << "\n"
+                                   << "set threads = 1\n"
+                                   << "subsection Sample\n  set number of particles = 200\n  set width = 0.05\n"
+                                   << "  set height = 0.08\n  set porosity tolerance = 0.01\nend\n"
+                                   << "subsection Test\n  set confining stresses = 20e3\n  set inertial number = 1e-3\n"
+                                   << "  set final axial strain = 0.01\n  set record interval = 1e-4\nend\n";
+  const int status = geohybrid::testing::run_geohybrid_with_full_files(
+    {"biaxial", (d / "biaxial.prm").string()}, d / "biaxial.log", "continuum_soil.prm,continuum_soil.prm.tmp");
+  expect_stopped_at(status, d / "biaxial.log", out / "continuum_soil.prm", out);
+  EXPECT_FALSE(fs::exists(out / "continuum_soil.prm"));
+  EXPECT_FALSE(fs::exists(out / "continuum_soil.prm.tmp"));
+}
+
 // The defaults (examples/coupling_test.prm) but 800 undamped steps, a few seconds: parameters.prm
 // (some 4.7 KB) fits under a limit of 6 KB, energy_history.csv (7.3 KB, a row every 10 steps)
 // does not. The whole table fits in the stream's buffer (8 KB), so its write fails only at the
