@@ -176,7 +176,7 @@ TEST(OutputDirectory, AnUnwritablePathIsRefusedBeforeAnythingIsWritten)
   geohybrid::testing::TemporaryDirectory d("unwritable");
   std::ofstream(d.path / "a_file") << "not a directory\n";
   const std::string input = geohybrid::testing::write_tiny_pullout_input(d.path);
-  for (const std::string out : {(d.path / "a_file" / "out").string(), std::string("/proc/geohybrid_unwritable")})
+  for (const std::string &out : {(d.path / "a_file" / "out").string(), std::string("/proc/geohybrid_unwritable")})
     {
       const std::string pullout = guard_error_of(
         [&] { geohybrid::apps::run_pullout_command(input, false, {{"output directory", out}}); });
