@@ -28,6 +28,17 @@ BenchmarkFigures band_figures(const CouplingTestInput &in, const BenchmarkRunnin
   });
   running("wave", [&] { f.wave = bench::strip_crossing(in.method, in.strip, in.patch); });
   running("energy run", [&] { f.energy = bench::energy_record(in.method, in.n_energy_steps, 0.0, in.patch); });
+  for (const unsigned int ratio : in.continuum_step_ratios)
+    running("multi-rate wave and energy run", [&] {
+      BenchmarkFigures::MultiRateFigures m;
+      m.ratio = ratio;
+      bench::StripSpec strip = in.strip;
+      strip.continuum_step_ratio = ratio;
+      m.wave = bench::strip_crossing(in.method, strip, in.patch);
+      m.energy = bench::energy_record(in.method, in.n_energy_steps, f.energy.time_step / ratio, in.patch,
+                                      coupling::MultiRate{ratio});
+      f.multi_rate.push_back(m);
+    });
   f.ghost_definition =
     "patch test along the lattice's rows (the band's normal +y; cells commensurate with the lattice, the band's edges "
     "on cell sides: the layout where the energy weights are exact, coupling_benchmarks.h) under the uniform strain "

@@ -26,6 +26,14 @@ struct BenchmarkFigures
   coupling::benchmarks::WaveRecord wave;
   coupling::benchmarks::EnergyRecord energy;
   std::string ghost_definition, wave_definition, energy_definition; ///< for the summary
+  /// Method 1 with multi-rate stepping: per ratio of CouplingTestInput::continuum_step_ratios.
+  struct MultiRateFigures
+  {
+    unsigned int ratio = 1;
+    coupling::benchmarks::WaveRecord wave;
+    coupling::benchmarks::EnergyRecord energy;
+  };
+  std::vector<MultiRateFigures> multi_rate;
 };
 
 /// Runs one benchmark (`what`: its name for messages); the command's wraps errors with the input.

@@ -26,6 +26,10 @@
 
 #include "dem/io/checked_output.h"
 
+#include <deal.II/base/utilities.h>
+
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -200,6 +204,14 @@ void declare_coupling_test_parameters(ParameterHandler &prm)
   prm.declare_entry("number of undamped steps", "10000", Patterns::Integer(40, 100000000),
                     "Steps of the undamped coupled run whose energy drift is measured (issue 6: 10,000) [-]");
   prm.leave_subsection();
+
+  prm.enter_subsection("Multi-rate");
+  prm.declare_entry("continuum step ratios", "", Patterns::List(Patterns::Integer(2, 10)),
+                    "method " + std::string(LagrangeMultiplierCoupling::name) + ": the wave and the energy run again "
+                    "with the continuum stepping once per this many particle steps, each (the particles at the "
+                    "lockstep's step over it, the continuum at the lockstep's); for the energy run's samples, every "
+                    "10 steps, a divisor of 10 (2 or 5); empty: none [-]");
+  prm.leave_subsection();
 }
 
 CouplingTestInput parse_coupling_test(ParameterHandler &prm, const std::string &where)
@@ -278,6 +290,19 @@ CouplingTestInput parse_coupling_test(ParameterHandler &prm, const std::string &
   prm.enter_subsection("Energy");
   in.n_energy_steps = static_cast<unsigned int>(prm.get_integer("number of undamped steps"));
   prm.leave_subsection();
+  prm.enter_subsection("Multi-rate");
+  for (const std::string &ratio : dealii::Utilities::split_string_list(prm.get("continuum step ratios")))
+    {
+      const int r = dealii::Utilities::string_to_int(ratio);
+      if (10 % r != 0)
+        throw std::invalid_argument(where + ": parameter 'Multi-rate/continuum step ratios' holds " + ratio +
+                                    ": the energy run samples every 10 steps, between windows: give 2 or 5");
+      in.continuum_step_ratios.push_back(static_cast<unsigned int>(r));
+    }
+  prm.leave_subsection();
+  if (!in.continuum_step_ratios.empty() && !std::holds_alternative<coupling::LagrangeMultiplierCoupling>(in.method))
+    throw std::invalid_argument(where + ": parameter 'Multi-rate/continuum step ratios' needs 'method' = " +
+                                std::string(coupling::LagrangeMultiplierCoupling::name));
   return in;
 }
 
@@ -346,6 +371,10 @@ int run_coupling_test_command(const std::string &input_file, bool resume)
   std::cout << "coupling-test (" << in.method_name << "): energy drift " << f.energy.drift << " over "
             << in.n_energy_steps << " undamped steps (largest deviation " << f.energy.largest_deviation << ")"
             << std::endl;
+  for (const BenchmarkFigures::MultiRateFigures &m : f.multi_rate)
+    std::cout << "coupling-test (" << in.method_name << "): continuum at " << m.ratio
+              << " particle steps: reflected energy fraction " << m.wave.reflected << ", energy drift "
+              << m.energy.drift << std::endl;
   const double wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // ---- the results; summary.json last ----
@@ -391,6 +420,21 @@ int run_coupling_test_command(const std::string &input_file, bool resume)
   summary.set("energy_continuum_share_max", f.energy.continuum_share);
   summary.set("coupling_force_imbalance_max_N_per_m", f.energy.largest_force_imbalance);
   summary.set("coupling_force_max_N_per_m", f.energy.largest_coupling_force);
+  if (!f.multi_rate.empty())
+    {
+      nlohmann::json rows = nlohmann::json::array();
+      for (const BenchmarkFigures::MultiRateFigures &m : f.multi_rate)
+        rows.push_back({{"continuum_step_ratio", m.ratio},
+                        {"particle_time_step_s", m.energy.time_step},
+                        {"reflected_energy_fraction", m.wave.reflected},
+                        {"wave_energy_in_continuum_fraction", m.wave.transmitted},
+                        {"energy_drift_relative", m.energy.drift},
+                        {"energy_largest_deviation_relative", m.energy.largest_deviation}});
+      summary.set_json("multi_rate", rows);
+      summary.set("multi_rate_definition", "method 1 with the continuum stepping once per continuum_step_ratio "
+                                           "particle steps, the particles at the lockstep's step over it: the wave "
+                                           "and the energy run as above (coupling/coupled_stepper.h)");
+    }
   summary.set("n_energy_steps", static_cast<double>(in.n_energy_steps));
   summary.set("n_particles", static_cast<double>(f.n_particles));
   summary.set("n_cells", static_cast<double>(f.n_cells));

@@ -11,6 +11,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <vector>
 
 namespace geohybrid::apps
 {
@@ -34,6 +35,9 @@ struct CouplingTestInput
   coupling::benchmarks::RowPatchLayout row_patch_layout;
   coupling::benchmarks::StripSpec strip;     ///< of the wave
   unsigned int n_energy_steps = 10000;
+  /// Method 1: the wave and the energy run again with the continuum at each of these particle
+  /// steps (multi-rate, coupling/coupled_stepper.h), the particles at the lockstep's step over it.
+  std::vector<unsigned int> continuum_step_ratios;
 };
 
 /// Reads the declared entries of `prm` (already parsed) and checks what the patterns cannot.

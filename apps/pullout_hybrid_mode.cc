@@ -89,6 +89,10 @@ void declare_hybrid_parameters(ParameterHandler &prm)
                     "its stiffest contact, so that the band does not lower the stable step (a density scaling of "
                     "the band: its statics are unchanged, its dynamics are not the weighted ones; a quasi-static "
                     "pull needs only the statics)");
+  prm.declare_entry("continuum step ratio", std::to_string(region.continuum_step_ratio), Patterns::Integer(0),
+                    "hybrid mode, coupling method = " + multipliers + ": the continuum steps once per this many "
+                    "particle steps (multi-rate: its stable step is many of the particles'; docs/coupling.md); 1 "
+                    "steps both together, 0 takes the largest ratio the continuum is stable at [-]");
   prm.declare_entry("fill under overburden", region.fill_under_overburden ? "true" : "false", Patterns::Bool(),
                     "hybrid mode: before the coupling, load the particle box's top with the weight of the soil "
                     "above it, gamma (fill height - box top), through a frictionless servo-controlled lid, and "
@@ -143,6 +147,7 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
     penalty->penalty_factor = prm.get_double("penalty factor");
   r.driven_below_weight = prm.get_double("driven below weight");
   r.scale_band_inertia = prm.get_bool("scale band inertia");
+  r.continuum_step_ratio = static_cast<unsigned int>(prm.get_integer("continuum step ratio"));
   r.fill_under_overburden = prm.get_bool("fill under overburden");
   prm.leave_subsection();
 
@@ -281,7 +286,11 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
             << "settled together in " << s.settling_steps << " steps (unbalanced ratio "
             << number(s.settled_unbalanced_ratio, 3) << "), set-up " << number(set_up_time, 4)
             << " s; time step " << number(s.time_step, 4) << " s (the particles' own " << number(s.particle_time_step, 4)
-            << " s); sheet at y = " << number(sheet_level, 4) << " m (H = " << number(actual_cover, 4)
+            << " s), the continuum's " << hybrid->stepper().continuum_step_ratio() << " of them"
+            << (hybrid->stepper().tied_inertia_factor() > 1.0
+                  ? " (the tied grains' inertia x " + number(hybrid->stepper().tied_inertia_factor(), 3) + ")"
+                  : std::string())
+            << "; sheet at y = " << number(sheet_level, 4) << " m (H = " << number(actual_cover, 4)
             << " m as laid); vertical stress at the sheet: top face " << number(before.top_face / 1e3, 4)
             << " kPa, Love-Weber above " << number(before.love_weber_above / 1e3, 4) << " kPa, gamma H "
             << number(gamma_H / 1e3, 4) << " kPa" << std::endl;
@@ -309,6 +318,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
             throw std::runtime_error("it holds no pull");
           hybrid->restore_state(std::move(state), coupling::restore_continuum_state(saved),
                                 saved.count("hybrid_pull_steps", 1)[0]);
+          coupling::restore_window_phase(saved, hybrid->stepper());
           pull.emplace(system, in.pull, *progress, hybrid->pull_step());
           output.emplace(out, g.sheet_width, in.profiles_at, saved);
           diagnostics.restore(saved);
@@ -367,6 +377,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
     diagnostics.store(c);
     watch.store(c);
     coupling::store_continuum_state(hybrid->continuum_state(), c);
+    coupling::store_window_phase(hybrid->stepper(), c);
     c.counts["hybrid_pull_steps"] = {hybrid->pull_steps()};
     c.texts = input.texts;
     dem::write_checkpoint(system.export_state(), c, checkpoint_file);
@@ -389,6 +400,8 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   summary.set("n_particles", static_cast<double>(s.n_particles));
   summary.set("n_particles_full_tank", static_cast<double>(in.tank.filling.n_particles));
   summary.set("coupling_method", std::string(coupling::name_of(spec.region.method)));
+  summary.set("continuum_step_ratio", static_cast<double>(hybrid->stepper().continuum_step_ratio()));
+  summary.set("tied_inertia_factor", hybrid->stepper().tied_inertia_factor());
   summary.set("n_cells", static_cast<double>(s.n_cells));
   summary.set("cell_size_m", s.cell_size);
   summary.set("band_width_m", s.band_width);

@@ -94,7 +94,7 @@ CouplingTie band_tie(const CouplingMethod &method, const BandParticles &band, co
 } // namespace
 
 CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
-                               const CouplingMethod &method, const BandTreatment &treatment)
+                               const CouplingMethod &method, const BandTreatment &treatment, const MultiRate &rate)
   : particles_(particles)
   , continuum_(continuum)
   , band_geometry_(checked(continuum, band, method))
@@ -122,7 +122,11 @@ CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &c
     }
   for (std::size_t q = 0; q < band_->driven_body.size(); ++q)
     driven_tied_displacement_.push_back(band_->driven_points.interpolate(continuum.displacement(), q));
-  start();
+  if (rate.continuum_step_ratio != 1 && !std::holds_alternative<LagrangeTie>(tie_))
+    throw std::invalid_argument("coupled stepper: 'continuum step ratio' = " + std::to_string(rate.continuum_step_ratio) +
+                                ": multi-rate stepping needs the multipliers (coupling method '" +
+                                std::string(LagrangeTie::name) + "'); give 1 for the others");
+  start(rate.continuum_step_ratio);
 }
 
 CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const InterfaceCoupling &method)
@@ -134,14 +138,33 @@ CoupledStepper::CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &c
   start();
 }
 
-void CoupledStepper::start()
+void CoupledStepper::start(unsigned int requested_ratio)
 {
   // From here on the particles read the attachment (their weighted step first): detached again if
   // the stepper is not made.
   particles_.attach(attachment_);
   try
     {
-      start_attached();
+      double particle_step = 0.0;
+      if (requested_ratio != 1)
+        {
+          const double limit = particle_stable_step();
+          particle_step = choose_ratio(requested_ratio);
+          // The tied particles move with the continuum through a window (at its half-step
+          // velocity; their contacts' forces reach them at the window's start): an explicit step
+          // of the window's length for them, stable once their inertia is (window / limit)^2
+          // times higher, if the window is longer than the particles' stable step (a density
+          // scaling of the band, as scale_band_inertia's: its statics unchanged).
+          tied_inertia_factor_ = std::max(1.0, std::pow(ratio_ * particle_step / limit, 2));
+          if (ratio_ > 1 && tied_inertia_factor_ > 1.0)
+            {
+              particles_.detach();
+              attachment_.scale_inertia(particles_.particles(), band_->body, tied_inertia_factor_);
+              tie_.emplace<LagrangeTie>(*band_, particles_.particles(), continuum_); // the new masses
+              particles_.attach(attachment_);
+            }
+        }
+      start_attached(particle_step);
     }
   catch (...)
     {
@@ -150,10 +173,51 @@ void CoupledStepper::start()
     }
 }
 
-void CoupledStepper::start_attached()
+double CoupledStepper::particle_stable_step() const
+{
+  const dem::DemSystem &particles = particles_;
+  const double step = particles.settings().time_step_safety * particles.critical_time_step();
+  return attachment_.band_inertia_scaled() ? scaled_band_step_fraction * step : step;
+}
+
+double CoupledStepper::choose_ratio(unsigned int requested_ratio)
+{
+  // The particles at their own stable step (the multipliers add no stiffness and only join
+  // masses), the continuum at ratio of them, within its own.
+  const double step = std::min(particle_stable_step(), particles_.time_step());
+  const double stable = continuum_.stable_time_step();
+  const auto most = static_cast<unsigned int>(std::max(1.0, std::floor(stable / step * (1.0 + 1e-12))));
+  ratio_ = requested_ratio == 0 ? most : requested_ratio;
+  if (ratio_ * step > stable * (1.0 + 1e-12))
+    {
+      std::ostringstream message;
+      message << "coupled stepper: 'continuum step ratio' = " << ratio_ << " gives the continuum a step of "
+              << ratio_ * step << " s, above its stable step " << stable << " s; at most " << most
+              << " with the particles' step " << step << " s (0 chooses it)";
+      ratio_ = 1;
+      throw std::invalid_argument(message.str());
+    }
+  return step;
+}
+
+void CoupledStepper::start_attached(double multi_rate_step)
 {
   dem::DemSystem &particles = particles_;
   fem::ExplicitSolver &continuum = continuum_;
+  if (ratio_ > 1)
+    {
+      time_step_ = multi_rate_step;
+      particles.set_time_step(time_step_);
+      continuum.set_time_step(ratio_ * time_step_);
+      attachment_.set_force_hook([this](dem::ParticleSet &p, double impulse_time) { apply_coupling(p, impulse_time); });
+      phase_ = 0;
+      hook_starts_window_ = true;
+      if (particles.forces_initialised())
+        apply_coupling(particles.particles(), 0.5 * time_step_);
+      else
+        particles.initialise_forces();
+      return;
+    }
   // One step for both: the smaller stable step, lowered by the penalty or interface springs (Weyl:
   // the squared frequencies of the uncoupled sides and of the springs add at most).
   const double particles_omega = 2.0 / particles.critical_time_step();
@@ -193,6 +257,9 @@ void CoupledStepper::cross_sheet(std::size_t dem_sheet_index, double rest_length
 {
   if (crossing_)
     throw std::logic_error("coupled stepper: the sheet already crosses into the continuum");
+  if (ratio_ > 1)
+    throw std::invalid_argument("coupled stepper: the sheet cannot cross into the continuum with multi-rate "
+                                "stepping ('continuum step ratio' = " + std::to_string(ratio_) + "): give 1");
   fem::EmbeddedSheet *continuum_sheet = continuum_.sheet();
   if (!continuum_sheet)
     throw std::invalid_argument("coupled stepper: the continuum has no sheet to join the particles' sheet to "
@@ -234,18 +301,74 @@ void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_
 {
   const Clock::time_point start = Clock::now();
   forces_ = CouplingForceSums{};
+  const bool first = impulse_time < time_step_; // the first evaluation (impulse time dt / 2) follows no drift
+  if (ratio_ > 1)
+    {
+      // The driven particles' forces now, as the continuum's own, at the window's start only.
+      if (band_ && hook_starts_window_)
+        pass_driven_forces(particles);
+      LagrangeTie &tie = std::get<LagrangeTie>(tie_);
+      if (hook_starts_window_)
+        tie.apply_window_start(particles, continuum_, impulse_time, ratio_ * impulse_time, time_step_, ratio_, forces_);
+      else
+        tie.apply_within_window(particles, continuum_, time_step_, forces_);
+      times_.coupling += seconds_since(start);
+      return;
+    }
   // The driven particles' contact forces go to the continuum's nodes first: the multipliers'
   // predictors must see every force the continuum will feel.
   if (band_)
     pass_driven_forces(particles);
-  // The first evaluation (impulse time dt / 2) follows no drift.
-  const TieTiming timing{impulse_time, impulse_time < time_step_ ? 0.0 : time_step_};
+  const TieTiming timing{impulse_time, first ? 0.0 : time_step_};
   std::visit([&](auto &tie) { tie.apply(particles, continuum_, timing, forces_); }, tie_);
   times_.coupling += seconds_since(start);
 }
 
+void CoupledStepper::step_in_window()
+{
+  Clock::time_point start = Clock::now();
+  if (phase_ == 0)
+    continuum_.step(); // to the window's end
+  times_.continuum += seconds_since(start);
+  start = Clock::now();
+  // The driven particles drift to the continuum's displacement at the particles' next time,
+  // linear over the window: u(T_end) less the rest of the window at its half-step velocity.
+  dem::ParticleSet &p = particles_.particles();
+  const double dt = time_step_, before_end = (ratio_ - phase_ - 1) * dt;
+  for (std::size_t q = 0; band_ && q < band_->driven_body.size(); ++q)
+    {
+      const std::uint32_t b = band_->driven_body[q];
+      const Vec2 target = band_->driven_reference_position[q] +
+                          band_->driven_points.interpolate(continuum_.displacement(), q) -
+                          before_end * band_->driven_points.interpolate(continuum_.velocity(), q) -
+                          driven_tied_displacement_[q];
+      p.vx[b] = (target.x() - p.x[b]) / dt;
+      p.vy[b] = (target.y() - p.y[b]) / dt;
+    }
+  times_.band_drive += seconds_since(start);
+  start = Clock::now();
+  hook_starts_window_ = phase_ + 1 == ratio_;
+  const double coupling_before = times_.coupling;
+  particles_.step();
+  times_.particles += seconds_since(start) - (times_.coupling - coupling_before);
+  phase_ = hook_starts_window_ ? 0 : phase_ + 1;
+}
+
+void CoupledStepper::restore_window_phase(unsigned int phase)
+{
+  if (phase >= ratio_)
+    throw std::invalid_argument("coupled stepper: the saved window phase " + std::to_string(phase) +
+                                " does not fit the continuum step ratio " + std::to_string(ratio_));
+  phase_ = phase;
+}
+
 void CoupledStepper::step()
 {
+  if (ratio_ > 1)
+    {
+      step_in_window();
+      return;
+    }
   Clock::time_point start = Clock::now();
   continuum_.step();
   times_.continuum += seconds_since(start);
@@ -290,7 +413,7 @@ CouplingDiagnostics CoupledStepper::diagnostics() const
   // (the coupling's included), as the DEM's full-step velocity (before its first step: v_0 itself).
   const auto &v = continuum_.velocity(), &u = continuum_.displacement(), &M = continuum_.lumped_mass();
   const auto &f_ext = continuum_.external_force(), &f_int = continuum_.internal_force();
-  const double half = continuum_.n_steps() > 0 ? 0.5 * time_step_ : 0.0;
+  const double half = continuum_.n_steps() > 0 ? 0.5 * continuum_.time_step() : 0.0;
   for (unsigned int i = 0; i < v.locally_owned_size(); ++i)
     {
       const double force = continuum_.is_constrained(i) ? 0.0 : f_ext.local_element(i) - f_int.local_element(i);

@@ -18,6 +18,18 @@
 // Method 3 (the non-overlapping interface, interface_wall.h) has no band, no weights and no driven
 // particles: the force hook evaluates the disc-edge contacts at t_{n+1}, both sides being there.
 //
+// Multi-rate (method 1 only; MultiRate): the continuum's stable step is tens of the particles'
+// (its cells are larger, its wave speed alike), so it may take one step of `ratio` particle steps
+// (a window): it steps at a window's start to the window's end, and the particles then step
+// `ratio` times with the tied ones held at its (constant) half-step velocity (stepped, so, at the
+// window's length: their inertia is raised by (window / particles' stable step)^2 where the
+// window is longer, tied_inertia_factor()), the driven ones
+// moved along its displacement, linear in time over the window. The multipliers at a window's
+// start pass the continuum the impulse the tied particles are predicted to pass over the window
+// (LagrangeTie::apply_window_start); the driven particles' forces reach it averaged over the
+// window, one window late. Both sides are at one time only between windows (window_phase() == 0):
+// diagnostics() and checkpoints are meant for those times. Ratio 1 is the lockstep above, bit for bit.
+//
 // Gravity and damping (quasi-static runs, the geostatic column): both sides keep their own
 // gravity (on the weighted masses: the band's weight is counted once) and their own damping. With
 // the multipliers (method 1), the tied particles and the nodes they interpolate from are exempt
@@ -47,8 +59,10 @@
 #include "dem/dem_system.h"
 #include "fem/explicit_solver.h"
 
+#include <array>
 #include <optional>
 #include <variant>
+#include <vector>
 
 namespace geohybrid::coupling
 {
@@ -109,6 +123,13 @@ struct BandTreatment
   bool scale_inertia = false;
 };
 
+/// The continuum's step as a number of particle steps (multi-rate stepping, method 1 only).
+struct MultiRate
+{
+  /// 1: both at one step; 0: the largest ratio whose step the continuum takes stably [-].
+  unsigned int continuum_step_ratio = 1;
+};
+
 class CoupledStepper
 {
 public:
@@ -118,8 +139,10 @@ public:
   /// particle outside the mesh, a particle in the continuum-only region).
   /// Methods 1 and 2 (`method` must not be an InterfaceCoupling: that one has no band).
   /// `treatment`: which of the band's particles are driven, and whether its inertia is scaled.
+  /// `rate`: the continuum's step; a ratio above 1 needs method 1 and a continuum stable at ratio
+  /// particle steps (std::invalid_argument otherwise, naming 'continuum step ratio').
   CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const OverlapBand &band,
-                 const CouplingMethod &method, const BandTreatment &treatment = {});
+                 const CouplingMethod &method, const BandTreatment &treatment = {}, const MultiRate &rate = {});
   /// Method 3: the particles touch the continuum's boundary `method.boundary_id` (no overlap).
   /// Throws std::invalid_argument as above, or from InterfaceWall.
   CoupledStepper(dem::DemSystem &particles, fem::ExplicitSolver &continuum, const InterfaceCoupling &method);
@@ -129,8 +152,21 @@ public:
 
   void step();
   void run_steps(unsigned int n);
-  double time_step() const { return time_step_; }
-  double time() const { return continuum_.time(); }
+  double time_step() const { return time_step_; } ///< the particles' [s]
+  /// The continuum's clock at the particles' time (within a window the continuum is at its end).
+  double time() const
+  {
+    return phase_ == 0 ? continuum_.time() : continuum_.time() - (ratio_ - phase_) * time_step_;
+  }
+  /// The continuum's step over the particles' (1 in lockstep).
+  unsigned int continuum_step_ratio() const { return ratio_; }
+  /// Multi-rate: the factor the tied particles' inertia was raised by (1: none was needed).
+  double tied_inertia_factor() const { return tied_inertia_factor_; }
+  /// Particle steps taken in the present window (0: both sides at time()).
+  unsigned int window_phase() const { return phase_; }
+  /// A resumed run's window_phase() (saved with the same set-up). Throws std::invalid_argument
+  /// if it does not fit the ratio.
+  void restore_window_phase(unsigned int phase);
 
   /// The sheet as one chain across both models (sheet_crossing.h): DEM sheet `dem_sheet_index`,
   /// whose last node lies in the particles' core, is joined to the continuum's sheet
@@ -163,8 +199,16 @@ private:
   void pass_driven_forces(const dem::ParticleSet &particles);
   /// What both constructors end with: the particles attached, then start_attached(): the common
   /// time step, the hook, the forces at t = 0.
-  void start();
-  void start_attached();
+  void start(unsigned int requested_ratio = 1);
+  /// Multi-rate: sets ratio_ (0: automatic), throws if the continuum cannot take it; returns the
+  /// particles' step.
+  double choose_ratio(unsigned int requested_ratio);
+  /// The particles' stable step with the band as it is (the measured margin if its inertia is scaled).
+  double particle_stable_step() const;
+  /// `multi_rate_step`: the particles' step when ratio_ > 1.
+  void start_attached(double multi_rate_step);
+  /// The multi-rate step (ratio_ > 1).
+  void step_in_window();
 
   dem::DemSystem &particles_;
   fem::ExplicitSolver &continuum_;
@@ -180,6 +224,9 @@ private:
   std::optional<SheetCrossing> crossing_;
   std::vector<Vec2> driven_tied_displacement_; ///< u(X) of each driven particle when tied [m]
   double time_step_ = 0.0;
+  unsigned int ratio_ = 1, phase_ = 0;
+  double tied_inertia_factor_ = 1.0; ///< multi-rate: the tied particles' inertia raised by this
+  bool hook_starts_window_ = true; ///< multi-rate: whether the next coupling evaluation is a window's start
   CoupledStepTimes times_;
   /// The fraction of the estimated stable step taken with the band's inertia scaled (start()).
   static constexpr double scaled_band_step_fraction = 0.8;

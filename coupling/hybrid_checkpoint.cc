@@ -106,4 +106,21 @@ fem::ExplicitSolverState restore_continuum_state(const dem::CommandState &c)
   t.advanced = c.count("continuum_sheet_advanced", 1)[0] != 0;
   return s;
 }
+
+void store_window_phase(const CoupledStepper &stepper, dem::CommandState &command)
+{
+  if (stepper.continuum_step_ratio() > 1)
+    command.counts["coupled_window_phase"] = {stepper.window_phase()};
+}
+
+void restore_window_phase(const dem::CommandState &command, CoupledStepper &stepper)
+{
+  if (command.counts.find("coupled_window_phase") == command.counts.end())
+    {
+      if (stepper.continuum_step_ratio() > 1)
+        throw std::invalid_argument("the checkpoint holds no multi-rate window: it was written in lockstep");
+      return;
+    }
+  stepper.restore_window_phase(static_cast<unsigned int>(command.count("coupled_window_phase", 1)[0]));
+}
 } // namespace geohybrid::coupling

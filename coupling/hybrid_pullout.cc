@@ -31,6 +31,15 @@ void HybridRegionSpec::validate(const std::string &where) const
           driven_below_weight, "must lie in [0, 1) [-]");
   if (const auto *penalty = std::get_if<PenaltyCoupling>(&method))
     penalty->validate(where, "Hybrid/penalty factor");
+  if (continuum_step_ratio != 1 && !std::holds_alternative<LagrangeMultiplierCoupling>(method))
+    throw std::invalid_argument(where + ": parameter 'Hybrid/continuum step ratio' = " +
+                                std::to_string(continuum_step_ratio) + " needs 'Hybrid/coupling method' = " +
+                                std::string(LagrangeMultiplierCoupling::name) + " (multi-rate stepping ties the band "
+                                "by the multipliers); give 1 with " + std::string(name_of(method)));
+  if (continuum_step_ratio != 1 && dem_region_length > 0.0)
+    throw std::invalid_argument(where + ": parameter 'Hybrid/continuum step ratio' = " +
+                                std::to_string(continuum_step_ratio) + " cannot be combined with 'Hybrid/DEM region "
+                                "length' > 0 (the sheet crossing steps with both models together): give 1");
   if (!has_band(method) && dem_region_length > 0.0)
     throw std::invalid_argument(where + ": parameter 'Hybrid/coupling method' = " + std::string(name_of(method)) +
                                 " cannot be combined with 'Hybrid/DEM region length' > 0 (the sheet crossing needs a "
@@ -274,7 +283,8 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
     {
       stepper_ = std::make_unique<CoupledStepper>(
         particles, *continuum_, *band_, spec.region.method,
-        BandTreatment{spec.region.driven_below_weight, spec.region.scale_band_inertia});
+        BandTreatment{spec.region.driven_below_weight, spec.region.scale_band_inertia},
+        MultiRate{spec.region.continuum_step_ratio});
       set_up_.n_tied = stepper_->band_particles().size();
       set_up_.n_driven = stepper_->band_particles().driven_body.size();
     }

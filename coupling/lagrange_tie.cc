@@ -50,6 +50,21 @@ LagrangeTie::LagrangeTie(const BandParticles &band, const dem::ParticleSet &part
   node_predictor_.assign(mass.locally_owned_size(), 0.0);
 }
 
+void LagrangeTie::predict_nodes(const fem::ExplicitSolver &continuum, double tau)
+{
+  const BandParticles &band = *band_;
+  const auto &velocity = continuum.velocity();
+  const auto &mass = continuum.lumped_mass();
+  const auto &f_ext = continuum.external_force(), &f_int = continuum.internal_force();
+  for (std::size_t p = 0; p < band.size(); ++p)
+    for (unsigned int k = 0; k < band.points.nodes_per_point(); ++k)
+      for (const unsigned int dof : {band.points.x_dof(p, k), band.points.y_dof(p, k)})
+        node_predictor_[dof] = velocity.local_element(dof) +
+                               (continuum.is_constrained(dof)
+                                  ? 0.0
+                                  : tau * (f_ext.local_element(dof) - f_int.local_element(dof)) / mass.local_element(dof));
+}
+
 void LagrangeTie::solve(unsigned int component, const Eigen::VectorXd &b, Eigen::VectorXd &x)
 {
   const Factor &f = *factor_[component];
@@ -71,19 +86,10 @@ void LagrangeTie::apply(dem::ParticleSet &particles, fem::ExplicitSolver &contin
   const double tau = timing.impulse_time;
   if (!(tau > 0.0))
     throw std::invalid_argument("Lagrange multiplier coupling: the time step must be positive");
-  const auto &velocity = continuum.velocity();
-  const auto &mass = continuum.lumped_mass();
-  const auto &f_ext = continuum.external_force(), &f_int = continuum.internal_force();
   const unsigned int n_nodes = band.points.nodes_per_point();
   const std::size_t n = band.size();
   // The continuum's predictors at the band's nodes (a prescribed DoF keeps its velocity).
-  for (std::size_t p = 0; p < n; ++p)
-    for (unsigned int k = 0; k < n_nodes; ++k)
-      for (const unsigned int dof : {band.points.x_dof(p, k), band.points.y_dof(p, k)})
-        node_predictor_[dof] = velocity.local_element(dof) +
-                               (continuum.is_constrained(dof)
-                                  ? 0.0
-                                  : tau * (f_ext.local_element(dof) - f_int.local_element(dof)) / mass.local_element(dof));
+  predict_nodes(continuum, tau);
   largest_velocity_gap_ = 0.0;
   for (unsigned int c = 0; c < 2; ++c)
     {
@@ -116,4 +122,94 @@ void LagrangeTie::apply(dem::ParticleSet &particles, fem::ExplicitSolver &contin
         }
     }
 }
+
+void LagrangeTie::apply_window_start(dem::ParticleSet &particles, fem::ExplicitSolver &continuum,
+                                     double particle_impulse_time, double continuum_impulse_time,
+                                     double particle_step, unsigned int ratio, CouplingForceSums &sums)
+{
+  const BandParticles &band = *band_;
+  const double tau = particle_impulse_time, tau_c = continuum_impulse_time;
+  if (!(tau > 0.0 && tau_c > 0.0 && particle_step > 0.0))
+    throw std::invalid_argument("Lagrange multiplier coupling: the time steps must be positive");
+  const unsigned int n_nodes = band.points.nodes_per_point();
+  const std::size_t n = band.size();
+  const double ahead = (ratio - 1) * particle_step;
+  // The tied particles' forces now, over the rest of the window, go to the continuum first: its
+  // predictors, and so the multipliers, see them.
+  for (unsigned int c = 0; c < 2; ++c)
+    {
+      const double *const force = c == 0 ? particles.fx.data() : particles.fy.data();
+      for (std::size_t p = 0; p < n; ++p)
+        {
+          const double impulse = ahead * force[band.body[p]];
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            {
+              const double N = band.points.shape_value(p, k);
+              continuum.add_external_force(c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k),
+                                           N * impulse / tau_c);
+              sums.on_continuum[c] += N * impulse / tau_c;
+            }
+        }
+    }
+  predict_nodes(continuum, tau_c);
+  largest_velocity_gap_ = 0.0;
+  for (unsigned int c = 0; c < 2; ++c)
+    {
+      const double *const v = c == 0 ? particles.vx.data() : particles.vy.data();
+      double *const force = c == 0 ? particles.fx.data() : particles.fy.data();
+      for (std::size_t p = 0; p < n; ++p)
+        {
+          const std::uint32_t b = band.body[p];
+          double interpolated = 0.0;
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            interpolated += band.points.shape_value(p, k) *
+                            node_predictor_[c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k)];
+          gap_[p] = v[b] + tau * force[b] * particles.inverse_mass[b] - interpolated;
+        }
+      solve(c, gap_, multiplier_); // impulses: A P = g*
+      check_.noalias() = matrix_[c] * multiplier_;
+      for (std::size_t p = 0; p < n; ++p)
+        largest_velocity_gap_ = std::max(largest_velocity_gap_, std::abs(check_[p] - gap_[p]));
+      for (std::size_t p = 0; p < n; ++p)
+        {
+          const double impulse = multiplier_[p];
+          force[band.body[p]] -= impulse / tau;
+          sums.on_particles[c] -= impulse / tau;
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            {
+              const double N = band.points.shape_value(p, k);
+              continuum.add_external_force(c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k),
+                                           N * impulse / tau_c);
+              sums.on_continuum[c] += N * impulse / tau_c;
+            }
+        }
+    }
+}
+
+void LagrangeTie::apply_within_window(dem::ParticleSet &particles, const fem::ExplicitSolver &continuum,
+                                      double particle_step, CouplingForceSums &sums)
+{
+  const BandParticles &band = *band_;
+  const auto &velocity = continuum.velocity(); // the window's half-step velocity
+  largest_velocity_gap_ = 0.0;
+  for (unsigned int c = 0; c < 2; ++c)
+    {
+      const double *const v = c == 0 ? particles.vx.data() : particles.vy.data();
+      double *const force = c == 0 ? particles.fx.data() : particles.fy.data();
+      for (std::size_t p = 0; p < band.size(); ++p)
+        {
+          const std::uint32_t b = band.body[p];
+          double target = 0.0;
+          for (unsigned int k = 0; k < band.points.nodes_per_point(); ++k)
+            target += band.points.shape_value(p, k) *
+                      velocity.local_element(c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k));
+          const double inverse_mass = particles.inverse_mass[b];
+          const double multiplier = (v[b] + particle_step * force[b] * inverse_mass - target) /
+                                    (particle_step * inverse_mass);
+          force[b] -= multiplier;
+          sums.on_particles[c] -= multiplier;
+        }
+    }
+}
+
 } // namespace geohybrid::coupling

@@ -87,6 +87,23 @@ double CouplingAttachment::scale_band_inertia(ParticleSet &p)
   return largest;
 }
 
+void CouplingAttachment::scale_inertia(ParticleSet &p, const std::vector<std::uint32_t> &bodies, double factor)
+{
+  refuse_when_attached("the tied bodies' inertia scaled");
+  if (!(factor >= 1.0 && std::isfinite(factor)))
+    throw std::invalid_argument("DEM: an inertia factor must be at least 1, not " + std::to_string(factor));
+  if (inertia_scale_.empty())
+    inertia_scale_.assign(p.n_bodies(), 1.0);
+  for (const std::uint32_t b : bodies)
+    {
+      if (b >= p.n_bodies() || p.inverse_mass[b] == 0.0)
+        throw std::invalid_argument("DEM: body index " + std::to_string(b) + " is out of range or fixed");
+      inertia_scale_[b] *= factor;
+      p.inverse_mass[b] /= factor;
+      p.inverse_inertia[b] /= factor;
+    }
+}
+
 void CouplingAttachment::set_constrained_bodies(const ParticleSet &p, const std::vector<std::uint32_t> &bodies)
 {
   const std::size_t nb = p.n_bodies();

@@ -53,6 +53,11 @@ public:
   /// energy with the scaled masses). Returns the largest factor. Throws std::logic_error without
   /// weights, or if called twice.
   double scale_band_inertia(ParticleSet &particles);
+  /// Multiplies the inertial mass and moment of inertia (not the weight) of `bodies` by `factor`
+  /// (>= 1), on top of scale_band_inertia's: the tied particles of a multi-rate coupling, which
+  /// move with the continuum through its longer step (coupling/coupled_stepper.h). Throws
+  /// std::invalid_argument for a factor below 1, an index out of range or a fixed body.
+  void scale_inertia(ParticleSet &particles, const std::vector<std::uint32_t> &bodies, double factor);
 
   // Read at every step: may change while attached.
 

@@ -86,9 +86,20 @@ ColumnRecord geostatic_column(const CouplingMethod &method, const ColumnSpec &sp
   g.cells_y = spec.rows / 2;
   const double d = g.spacing(), h = g.row_height();
 
+  // Multi-rate: the particles at the lockstep's step over the ratio, the continuum at the
+  // lockstep's (the same continuum step, so that only the stepping differs).
+  const unsigned int ratio = spec.continuum_step_ratio;
+  double particle_step = spec.time_step;
+  if (ratio > 1 && particle_step == 0.0)
+    {
+      ColumnSpec lockstep = spec;
+      lockstep.continuum_step_ratio = 1;
+      lockstep.max_steps = 0; // built, not run
+      particle_step = geostatic_column(method, lockstep).time_step / ratio;
+    }
   CoupledPatch patch;
   patch.geometry = g;
-  dem::DemSettings particle_settings = undamped_settings(spec.time_step);
+  dem::DemSettings particle_settings = undamped_settings(particle_step);
   particle_settings.gravity = Vec2(-spec.gravity, 0.0);
   particle_settings.local_damping = spec.local_damping;
   dem::ParticleSet discs = patch_particles(g);
@@ -105,10 +116,13 @@ ColumnRecord geostatic_column(const CouplingMethod &method, const ColumnSpec &sp
   patch.continuum =
     std::make_unique<fem::ExplicitSolver>(*patch.mesh, matching_soil(g), fem::BoundaryConditions{}, continuum_settings);
   patch.stepper = std::make_unique<CoupledStepper>(*patch.particles, *patch.continuum, patch_band(g), method,
-                                                   BandTreatment{0.0, spec.scale_band_inertia});
+                                                   BandTreatment{0.0, spec.scale_band_inertia}, MultiRate{ratio});
 
   ColumnRecord record;
   record.time_step = patch.stepper->time_step();
+  record.continuum_step_ratio = patch.stepper->continuum_step_ratio();
+  if (spec.max_steps == 0)
+    return record;
   const double rho = continuum_settings.density, top = spec.continuum_end * d;
   record.base_stress = rho * spec.gravity * top;
   // Windows of `window` spacings, from the base's second spacing to the tied margin below the

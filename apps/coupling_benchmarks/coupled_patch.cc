@@ -78,7 +78,7 @@ OverlapBand patch_band(const PatchGeometry &g)
 
 CoupledPatch coupled_patch_at_rest(const CouplingMethod &method, const PatchGeometry &geometry,
                                    const dem::DemSettings &particle_settings,
-                                   const fem::ExplicitSettings &continuum_settings)
+                                   const fem::ExplicitSettings &continuum_settings, const MultiRate &rate)
 {
   CoupledPatch patch;
   patch.geometry = geometry;
@@ -90,7 +90,8 @@ CoupledPatch coupled_patch_at_rest(const CouplingMethod &method, const PatchGeom
   fem::ExplicitSettings settings = patch_continuum_settings(g);
   settings.damping = continuum_settings.damping;
   patch.continuum = std::make_unique<fem::ExplicitSolver>(*patch.mesh, matching_soil(g), fem::BoundaryConditions{}, settings);
-  patch.stepper = std::make_unique<CoupledStepper>(*patch.particles, *patch.continuum, patch_band(g), method);
+  patch.stepper =
+    std::make_unique<CoupledStepper>(*patch.particles, *patch.continuum, patch_band(g), method, BandTreatment{}, rate);
   return patch;
 }
 } // namespace geohybrid::coupling::benchmarks

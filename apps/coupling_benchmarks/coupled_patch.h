@@ -73,8 +73,9 @@ struct CoupledPatch
 OverlapBand patch_band(const PatchGeometry &g);
 
 /// The patch at rest (bonded lattice, continuum unstressed) coupled by `method`; `settings` for
-/// the continuum (damping, to test its refusal).
+/// the continuum (damping, to test its refusal); `rate` the continuum's step (multi-rate).
 CoupledPatch coupled_patch_at_rest(const CouplingMethod &method, const PatchGeometry &geometry = {},
                                    const dem::DemSettings &particle_settings = undamped_settings(),
-                                   const fem::ExplicitSettings &continuum_settings = {});
+                                   const fem::ExplicitSettings &continuum_settings = {},
+                                   const MultiRate &rate = {});
 } // namespace geohybrid::coupling::benchmarks

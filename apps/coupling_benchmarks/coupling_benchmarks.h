@@ -199,7 +199,7 @@ void launch_energy_pulse(CoupledPatch &patch, double amplitude);
 /// the discs of the particle-only region (a wave that crosses the band), run undamped for
 /// `n_steps` steps of `time_step` (0: the stepper's own) [s].
 EnergyRecord energy_record(const CouplingMethod &method, unsigned int n_steps, double time_step = 0.0,
-                           const PatchGeometry &geometry = {});
+                           const PatchGeometry &geometry = {}, const MultiRate &rate = {});
 
 /// A pulse of x-velocity 1e-3 exp(-r^2 / width^2) [m/s]: 1D (r = x - x0) or a 2D blob round
 /// (x0, y0) [m].
@@ -246,9 +246,9 @@ void run_beside_reference(CoupledStepper &stepper, dem::DemSystem &reference, co
                           WaveRecord &record);
 
 /// The pulse launched on the free discs of the patch `g` at rest, run until the slowest wave of
-/// interest, at `speed` [m/s], has gone `travel` [m].
+/// interest, at `speed` [m/s], has gone `travel` [m]. `continuum_step_ratio` as StripSpec's.
 WaveRecord crossing(const CouplingMethod &method, const PatchGeometry &g, const Pulse &pulse, double travel,
-                    double speed);
+                    double speed, unsigned int continuum_step_ratio = 1);
 
 /// A strip 6 rows high (3 cells over its height: the wave is 1D-like): particles over `length`
 /// spacings, a band of `band_width` spacings, the continuum `length` spacings beyond it in cells of
@@ -258,6 +258,8 @@ WaveRecord crossing(const CouplingMethod &method, const PatchGeometry &g, const 
 struct StripSpec
 {
   double band_width = 4.0, pulse_width = 4.0, length = 40.0, cell_size = 1.0; ///< in spacings
+  /// Multi-rate (MultiRate): the particles at the lockstep's step over it, the continuum at the lockstep's.
+  unsigned int continuum_step_ratio = 1;
 };
 PatchGeometry strip_geometry(const StripSpec &spec, const PatchGeometry &lattice = {});
 WaveRecord strip_crossing(const CouplingMethod &method, const StripSpec &spec, const PatchGeometry &lattice = {});
@@ -284,6 +286,9 @@ struct ColumnSpec
   /// The band's inertia scaled (BandTreatment::scale_inertia): the statics must not change.
   bool scale_band_inertia = false;
   double time_step = 0.0;             ///< [s]; 0: the coupled stable step (a smaller one is taken as given)
+  /// Multi-rate (MultiRate): with time_step 0, the particles take the lockstep's step over it and
+  /// the continuum the lockstep's. Rest is checked every 500 steps: a divisor of 500.
+  unsigned int continuum_step_ratio = 1;
 };
 /// One stress window: its centre's height [m], the measured vertical stress and the weight above
 /// it (both as compressions, positive) [Pa], the model that measured it.
@@ -297,7 +302,8 @@ struct ColumnRecord
 {
   std::vector<ColumnSample> samples;   ///< from the base up: the lattice's windows below the band, the continuum's above
   unsigned int n_steps = 0;            ///< to rest
-  double time_step = 0.0;              ///< [s]
+  double time_step = 0.0;              ///< the particles' [s]
+  unsigned int continuum_step_ratio = 1; ///< the continuum's step over time_step
   double base_stress = 0.0;            ///< rho g x_top, the closed-form stress at x = 0 [Pa]
   /// At rest: the largest |(x_p - X_p) - u(X_p)| of the tied discs (the ties hold them on the
   /// continuum: round-off with the multipliers, the springs' stretch with the penalty), and the

@@ -192,6 +192,9 @@ EnergyRecord undamped_energy_record(CoupledStepper &stepper, unsigned int n_step
   if (n_steps < 40)
     throw std::invalid_argument("energy run: " + std::to_string(n_steps) +
                                 " steps leave a quarter of the run without a sample (one every 10 steps); run at least 40");
+  if (10 % stepper.continuum_step_ratio() != 0)
+    throw std::invalid_argument("energy run: its samples, every 10 steps, must fall between windows: a continuum "
+                                "step ratio of 1, 2, 5 or 10");
   const double initial = stepper.diagnostics().total();
   EnergyRecord record;
   record.time_step = stepper.time_step();
@@ -206,8 +209,10 @@ EnergyRecord undamped_energy_record(CoupledStepper &stepper, unsigned int n_step
     {
       stepper.step();
       // The force sums every step (cheap: the stepper keeps them), the energies every 10 steps.
+      // (In lockstep only: with multi-rate the continuum receives a window's impulses at its start.)
       const CouplingForceSums &forces = stepper.coupling_forces();
-      record.largest_force_imbalance = std::max(record.largest_force_imbalance, (forces.on_particles + forces.on_continuum).norm());
+      if (stepper.continuum_step_ratio() == 1)
+        record.largest_force_imbalance = std::max(record.largest_force_imbalance, (forces.on_particles + forces.on_continuum).norm());
       record.largest_coupling_force = std::max(record.largest_coupling_force, forces.on_particles.norm());
       if (n % 10 == 0)
         {
@@ -227,9 +232,9 @@ EnergyRecord undamped_energy_record(CoupledStepper &stepper, unsigned int n_step
 }
 
 EnergyRecord energy_record(const CouplingMethod &method, unsigned int n_steps, double time_step,
-                           const PatchGeometry &geometry)
+                           const PatchGeometry &geometry, const MultiRate &rate)
 {
-  CoupledPatch patch = coupled_patch_at_rest(method, geometry, undamped_settings(time_step));
+  CoupledPatch patch = coupled_patch_at_rest(method, geometry, undamped_settings(time_step), {}, rate);
   launch_energy_pulse(patch, 1e-3);
   return undamped_energy_record(*patch.stepper, n_steps);
 }

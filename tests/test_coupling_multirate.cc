@@ -1,0 +1,139 @@
+// Multi-rate stepping (issue 26, part 2): the continuum takes one step of `ratio` particle steps
+// (coupled_stepper.h, MultiRate). Each benchmark is run with the lockstep's continuum step and the
+// particles' step divided by the ratio, so that only the stepping differs from the lockstep run:
+// the geostatic column's stresses and energy balance, the undamped patch's energy, the long wave's
+// reflection; and the set-ups multi-rate refuses.
+#include "test_coupling_patch.h"
+
+#include "apps/coupling_benchmarks/coupling_benchmarks.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+using namespace geohybrid;
+using namespace geohybrid::coupling;
+using namespace geohybrid::coupling::benchmarks;
+using namespace geohybrid::coupling::testing;
+
+namespace
+{
+// The column at rest with the continuum at 4 particle steps: each model carries the weight above
+// it within the lockstep's 2 %, with no step across the band, the tied discs on the continuum to
+// round-off at the windows' ends (they move at its velocity through each window), and the energy
+// balance from release to rest within the lockstep's 1e-4.
+TEST(MultiRate, GeostaticColumnKeepsItsStressesAndEnergyBalance)
+{
+  ColumnSpec spec;
+  spec.continuum_step_ratio = 4;
+  const ColumnRecord record = geostatic_column(LagrangeMultiplierCoupling{}, spec);
+  std::cout << "continuum at " << record.continuum_step_ratio << " particle steps of " << record.time_step
+            << " s: at rest after " << record.n_steps << " steps; largest stress error "
+            << record.largest_relative_error() << ", jump across the band " << record.jump_across_band()
+            << ", tied mismatch " << record.tied_mismatch << " m of " << record.tied_displacement
+            << " m, energy balance error at rest " << record.energy_balance_error << " (largest "
+            << record.largest_energy_balance_error << ")" << std::endl;
+  ASSERT_EQ(record.continuum_step_ratio, 4u);
+  ASSERT_GE(record.samples.size(), 6u);
+  EXPECT_LT(record.largest_relative_error(), 0.02);
+  EXPECT_LT(std::abs(record.jump_across_band()), 0.02);
+  EXPECT_GT(record.tied_displacement, 1e-7);
+  EXPECT_LT(record.tied_mismatch, 1e-9 * record.tied_displacement);
+  EXPECT_LT(std::abs(record.energy_balance_error), 1e-4);
+}
+
+// The undamped patch (the lockstep's energy test): its energy drift over 10,000 particle steps
+// stays within the lockstep's 1e-4 with the continuum at 2 and 5 particle steps.
+TEST(MultiRate, UndampedPatchKeepsItsEnergy)
+{
+  const double lockstep = energy_record(LagrangeMultiplierCoupling{}, 40).time_step;
+  for (const unsigned int ratio : {2u, 5u})
+    {
+      const EnergyRecord record =
+        energy_record(LagrangeMultiplierCoupling{}, 10000, lockstep / ratio, PatchGeometry{}, MultiRate{ratio});
+      std::cout << "ratio " << ratio << ": energy drift " << record.drift << ", largest deviation "
+                << record.largest_deviation << " (the continuum held up to " << record.continuum_share << ")"
+                << std::endl;
+      EXPECT_GT(record.continuum_share, 0.5); // the wave did cross into the continuum
+      EXPECT_LT(std::abs(record.drift), 1e-4);
+    }
+}
+
+// The issue's bound on the long wave's reflection with the multipliers, 1e-2, with the continuum
+// at 4 particle steps (the lockstep: 1.5e-4, test_coupling_waves.cc).
+TEST(MultiRate, LongWaveReflectsLittle)
+{
+  StripSpec spec;
+  spec.continuum_step_ratio = 4;
+  const WaveRecord record = strip_crossing(LagrangeMultiplierCoupling{}, spec);
+  std::cout << "continuum at 4 particle steps: reflected energy fraction " << record.reflected << ", in the continuum "
+            << record.transmitted << " (" << record.n_steps << " particle steps)" << std::endl;
+  EXPECT_LT(record.reflected, 1e-2);
+  EXPECT_GT(record.transmitted, 0.9);
+}
+
+// A run stopped in the middle of a window and continued by a second stepper from the exported
+// states and the window's phase (a checkpoint's contents) ends where the straight run does, bit
+// for bit.
+TEST(MultiRate, ContinuedFromTheMiddleOfAWindowIsBitForBit)
+{
+  const double lockstep = coupled_patch_at_rest(LagrangeMultiplierCoupling{}).stepper->time_step();
+  const auto patch_at_rate = [&] {
+    CoupledPatch patch =
+      coupled_patch_at_rest(LagrangeMultiplierCoupling{}, {}, undamped_settings(lockstep / 4), {}, MultiRate{4});
+    launch_energy_pulse(patch, 1e-3);
+    return patch;
+  };
+  CoupledPatch straight = patch_at_rate();
+  straight.stepper->run_steps(402);
+  CoupledPatch first = patch_at_rate();
+  first.stepper->run_steps(201);
+  ASSERT_EQ(first.stepper->window_phase(), 1u);
+  CoupledPatch second = patch_at_rate();
+  second.particles->restore_state(first.particles->export_state());
+  second.continuum->restore_state(first.continuum->export_state());
+  second.stepper->restore_window_phase(first.stepper->window_phase());
+  second.stepper->run_steps(201);
+  const dem::ParticleSet &a = straight.particles->particles(), &b = second.particles->particles();
+  ASSERT_EQ(a.n_bodies(), b.n_bodies());
+  for (std::size_t k = 0; k < a.n_bodies(); ++k)
+    {
+      EXPECT_EQ(a.x[k], b.x[k]);
+      EXPECT_EQ(a.vx[k], b.vx[k]);
+    }
+  const auto &u = straight.continuum->displacement(), &w = second.continuum->displacement();
+  for (unsigned int i = 0; i < u.locally_owned_size(); ++i)
+    EXPECT_EQ(u.local_element(i), w.local_element(i));
+  EXPECT_NE(invalid_argument_message([&] { second.stepper->restore_window_phase(4); }).find("window phase 4"),
+            std::string::npos);
+}
+
+// A ratio the continuum cannot take, and multi-rate with the penalty springs: refused, naming the entry.
+TEST(MultiRate, RefusesAnUnstableRatioAndThePenaltySprings)
+{
+  const std::string unstable =
+    invalid_argument_message([] { coupled_patch_at_rest(LagrangeMultiplierCoupling{}, {}, undamped_settings(), {}, MultiRate{50}); });
+  EXPECT_NE(unstable.find("'continuum step ratio' = 50"), std::string::npos) << unstable;
+  EXPECT_NE(unstable.find("above its stable step"), std::string::npos) << unstable;
+  const std::string penalty =
+    invalid_argument_message([] { coupled_patch_at_rest(PenaltyCoupling{}, {}, undamped_settings(), {}, MultiRate{2}); });
+  EXPECT_NE(penalty.find("needs the multipliers"), std::string::npos) << penalty;
+}
+
+// Ratio 0 takes the largest ratio the continuum is stable at: with the particles at a tenth of the
+// lockstep's step, at least 10 (the lockstep's step is within the continuum's stable step).
+TEST(MultiRate, AutomaticRatioIsTheLargestStableOne)
+{
+  const double lockstep = coupled_patch_at_rest(LagrangeMultiplierCoupling{}).stepper->time_step();
+  const CoupledPatch patch =
+    coupled_patch_at_rest(LagrangeMultiplierCoupling{}, {}, undamped_settings(0.1 * lockstep), {}, MultiRate{0});
+  const unsigned int ratio = patch.stepper->continuum_step_ratio();
+  const double stable = patch.continuum->stable_time_step();
+  std::cout << "automatic ratio " << ratio << " (continuum step " << ratio * patch.stepper->time_step()
+            << " s, stable " << stable << " s)" << std::endl;
+  EXPECT_GE(ratio, 10u);
+  EXPECT_LE(ratio * patch.stepper->time_step(), stable * (1.0 + 1e-12));
+  EXPECT_GT((ratio + 1) * patch.stepper->time_step(), stable);
+}
+} // namespace
