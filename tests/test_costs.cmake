@@ -41,6 +41,7 @@ else()
   set(costs
     PullOutInterrupted.HybridSigtermKeepsTheRowsAndResumesBitForBit 86
     PullOutHybridMode.ResumesAStoppedPullBitForBit 74
+    HybridPullOut.MultiRateAgreesWithLockstepOnASmallTank 70
     HybridPullOut.SmallTankCarriesTheOverburdenThroughTheBandAndPulls 49
     HybridPullOut.InterfaceCouplingCarriesTheOverburdenAndBalances 39
     HybridPullOut.SheetCrossesIntoTheContinuumAndEachPartBalances 33
