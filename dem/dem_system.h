@@ -122,7 +122,7 @@ public:
   /// and omega^2 = 2 k_rot / I in rotation, with k_rot the rotational stiffness of 6 contacts
   /// spread evenly round each disc: 6 (ks (r^2 + d^2 / 2) + kn d^2 / 2) per disc of radius r at
   /// a distance d from the centre of mass (for a disc, 6 ks r^2). Checked without damping
-  /// (tests/test_dem_system.cc): a hexagonal packing of equal discs is stable at the limit and
+  /// (tests/test_dem_time_step.cc): a hexagonal packing of equal discs is stable at the limit and
   /// unstable 10 % above it; a dense packing of two-disc clusters (coordination ~5) made by REDF
   /// is stable at the limit (measured: still at 1.6 x, not at 2 x). A single-contact estimate sqrt(m / k) is
   /// not a bound: the hexagonal packing blows up at 0.7 sqrt(m / kn). Over the free nodes of the

@@ -172,7 +172,7 @@ TEST_F(DemCommand, CsvImpactIsScriptable)
 // Without gravity the energy balance is relative to the largest of the budget's terms (here the
 // pair's kinetic energy), not to |gravitational| = 0: a head-on impact with dashpots (e = 0.5)
 // reports a finite error in summary.json and in every row of the time series (it was 6e291).
-// At 0.02 of the critical step the balance closes to 1e-4 (EnergyBalance.* in test_dem_system.cc);
+// At 0.02 of the critical step the balance closes to 1e-4 (EnergyBalance.* in test_dem_energy.cc);
 // 1e-3 is the tolerance.
 TEST_F(DemCommand, EnergyBalanceWithoutGravityIsFinite)
 {
