@@ -157,7 +157,9 @@ TEST(HybridPullOut, MultiRateAgreesWithLockstepOnASmallTank)
                 << hybrid.set_up().time_step << " s (the tied grains' inertia x " << hybrid.stepper().tied_inertia_factor()
                 << "), settled in " << hybrid.set_up().settling_steps << " steps" << std::endl;
       if (ratio == 0)
-        EXPECT_GT(hybrid.stepper().continuum_step_ratio(), 1u);
+        {
+          EXPECT_GT(hybrid.stepper().continuum_step_ratio(), 1u);
+        }
       dem::PullSpec pull;
       pull.rate = 0.005;
       pull.final_displacement = 0.0012;
