@@ -301,7 +301,6 @@ void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_
 {
   const Clock::time_point start = Clock::now();
   forces_ = CouplingForceSums{};
-  const bool first = impulse_time < time_step_; // the first evaluation (impulse time dt / 2) follows no drift
   if (ratio_ > 1)
     {
       // The driven particles' forces now, as the continuum's own, at the window's start only.
@@ -319,7 +318,8 @@ void CoupledStepper::apply_coupling(dem::ParticleSet &particles, double impulse_
   // predictors must see every force the continuum will feel.
   if (band_)
     pass_driven_forces(particles);
-  const TieTiming timing{impulse_time, first ? 0.0 : time_step_};
+  // The first evaluation (impulse time dt / 2) follows no drift.
+  const TieTiming timing{impulse_time, impulse_time < time_step_ ? 0.0 : time_step_};
   std::visit([&](auto &tie) { tie.apply(particles, continuum_, timing, forces_); }, tie_);
   times_.coupling += seconds_since(start);
 }

@@ -79,17 +79,24 @@ void LagrangeTie::solve(unsigned int component, const Eigen::VectorXd &b, Eigen:
     x[Pinv[i]] = work_[i];
 }
 
-void LagrangeTie::apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, const TieTiming &timing,
-                        CouplingForceSums &sums)
+void LagrangeTie::add_to_nodes(fem::ExplicitSolver &continuum, std::size_t p, unsigned int component, double force,
+                               CouplingForceSums &sums) const
+{
+  const BandPoints &points = band_->points;
+  for (unsigned int k = 0; k < points.nodes_per_point(); ++k)
+    {
+      const double N = points.shape_value(p, k);
+      continuum.add_external_force(component == 0 ? points.x_dof(p, k) : points.y_dof(p, k), N * force);
+      sums.on_continuum[component] += N * force;
+    }
+}
+
+void LagrangeTie::solve_and_apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, double tau,
+                                  double continuum_share, CouplingForceSums &sums)
 {
   const BandParticles &band = *band_;
-  const double tau = timing.impulse_time;
-  if (!(tau > 0.0))
-    throw std::invalid_argument("Lagrange multiplier coupling: the time step must be positive");
   const unsigned int n_nodes = band.points.nodes_per_point();
   const std::size_t n = band.size();
-  // The continuum's predictors at the band's nodes (a prescribed DoF keeps its velocity).
-  predict_nodes(continuum, tau);
   largest_velocity_gap_ = 0.0;
   for (unsigned int c = 0; c < 2; ++c)
     {
@@ -113,14 +120,20 @@ void LagrangeTie::apply(dem::ParticleSet &particles, fem::ExplicitSolver &contin
           const double lambda = multiplier_[p];
           force[band.body[p]] -= lambda;
           sums.on_particles[c] -= lambda;
-          for (unsigned int k = 0; k < n_nodes; ++k)
-            {
-              const double N = band.points.shape_value(p, k);
-              continuum.add_external_force(c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k), N * lambda);
-              sums.on_continuum[c] += N * lambda;
-            }
+          add_to_nodes(continuum, p, c, lambda * continuum_share, sums);
         }
     }
+}
+
+void LagrangeTie::apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, const TieTiming &timing,
+                        CouplingForceSums &sums)
+{
+  const double tau = timing.impulse_time;
+  if (!(tau > 0.0))
+    throw std::invalid_argument("Lagrange multiplier coupling: the time step must be positive");
+  // The continuum's predictors at the band's nodes (a prescribed DoF keeps its velocity).
+  predict_nodes(continuum, tau);
+  solve_and_apply(particles, continuum, tau, 1.0, sums);
 }
 
 void LagrangeTie::apply_window_start(dem::ParticleSet &particles, fem::ExplicitSolver &continuum,
@@ -131,59 +144,18 @@ void LagrangeTie::apply_window_start(dem::ParticleSet &particles, fem::ExplicitS
   const double tau = particle_impulse_time, tau_c = continuum_impulse_time;
   if (!(tau > 0.0 && tau_c > 0.0 && particle_step > 0.0))
     throw std::invalid_argument("Lagrange multiplier coupling: the time steps must be positive");
-  const unsigned int n_nodes = band.points.nodes_per_point();
-  const std::size_t n = band.size();
-  const double ahead = (ratio - 1) * particle_step;
   // The tied particles' forces now, over the rest of the window, go to the continuum first: its
   // predictors, and so the multipliers, see them.
+  const double ahead = (ratio - 1) * particle_step / tau_c;
   for (unsigned int c = 0; c < 2; ++c)
     {
       const double *const force = c == 0 ? particles.fx.data() : particles.fy.data();
-      for (std::size_t p = 0; p < n; ++p)
-        {
-          const double impulse = ahead * force[band.body[p]];
-          for (unsigned int k = 0; k < n_nodes; ++k)
-            {
-              const double N = band.points.shape_value(p, k);
-              continuum.add_external_force(c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k),
-                                           N * impulse / tau_c);
-              sums.on_continuum[c] += N * impulse / tau_c;
-            }
-        }
+      for (std::size_t p = 0; p < band.size(); ++p)
+        add_to_nodes(continuum, p, c, ahead * force[band.body[p]], sums);
     }
   predict_nodes(continuum, tau_c);
-  largest_velocity_gap_ = 0.0;
-  for (unsigned int c = 0; c < 2; ++c)
-    {
-      const double *const v = c == 0 ? particles.vx.data() : particles.vy.data();
-      double *const force = c == 0 ? particles.fx.data() : particles.fy.data();
-      for (std::size_t p = 0; p < n; ++p)
-        {
-          const std::uint32_t b = band.body[p];
-          double interpolated = 0.0;
-          for (unsigned int k = 0; k < n_nodes; ++k)
-            interpolated += band.points.shape_value(p, k) *
-                            node_predictor_[c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k)];
-          gap_[p] = v[b] + tau * force[b] * particles.inverse_mass[b] - interpolated;
-        }
-      solve(c, gap_, multiplier_); // impulses: A P = g*
-      check_.noalias() = matrix_[c] * multiplier_;
-      for (std::size_t p = 0; p < n; ++p)
-        largest_velocity_gap_ = std::max(largest_velocity_gap_, std::abs(check_[p] - gap_[p]));
-      for (std::size_t p = 0; p < n; ++p)
-        {
-          const double impulse = multiplier_[p];
-          force[band.body[p]] -= impulse / tau;
-          sums.on_particles[c] -= impulse / tau;
-          for (unsigned int k = 0; k < n_nodes; ++k)
-            {
-              const double N = band.points.shape_value(p, k);
-              continuum.add_external_force(c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k),
-                                           N * impulse / tau_c);
-              sums.on_continuum[c] += N * impulse / tau_c;
-            }
-        }
-    }
+  // The multiplier acts on the particle over tau and on the nodes over tau_c: the same impulse.
+  solve_and_apply(particles, continuum, tau, tau / tau_c, sums);
 }
 
 void LagrangeTie::apply_within_window(dem::ParticleSet &particles, const fem::ExplicitSolver &continuum,

@@ -83,6 +83,14 @@ private:
   void solve(unsigned int component, const Eigen::VectorXd &b, Eigen::VectorXd &x);
   /// node_predictor_ = v_I + tau (f_ext - f_int) / M_I at the band's nodes (prescribed: v_I).
   void predict_nodes(const fem::ExplicitSolver &continuum, double tau);
+  /// Solves A lambda = g* / tau from node_predictor_ and the particles' predictors over `tau`,
+  /// and applies -lambda to the particles and N lambda continuum_share to the nodes (the share:
+  /// tau over the continuum's impulse time, 1 in lockstep).
+  void solve_and_apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, double tau,
+                       double continuum_share, CouplingForceSums &sums);
+  /// Adds band particle p's `force` (component 0: x, 1: y) to its nodes' external force.
+  void add_to_nodes(fem::ExplicitSolver &continuum, std::size_t p, unsigned int component, double force,
+                    CouplingForceSums &sums) const;
 
   const BandParticles *band_;
   std::array<Matrix, 2> matrix_;
