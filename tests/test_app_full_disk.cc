@@ -21,6 +21,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -46,6 +47,28 @@ void expect_stopped_at(int status, const fs::path &log, const fs::path &file, co
   EXPECT_EQ(count_of(said, "error:"), 1u) << said;
   EXPECT_NE(said.find("cannot write " + file.string() + " (is the disk full"), std::string::npos) << said;
   EXPECT_FALSE(fs::exists(out / "summary.json"));
+}
+
+/// A biaxial test of 200 particles at one confinement to 1 % strain (a few seconds), a point of its
+/// curve every `record_interval` of axial strain, into `out`: the entries.
+std::string biaxial_entries(const fs::path &out, double record_interval)
+{
+  std::ostringstream entries;
+  entries << "set output directory = " << out.string() << "\n"
+          << "set threads = 1\n"
+          << "subsection Sample\n  set number of particles = 200\n  set width = 0.05\n"
+          << "  set height = 0.08\n  set porosity tolerance = 0.01\nend\n"
+          << "subsection Test\n  set confining stresses = 20e3\n  set inertial number = 1e-3\n"
+          << "  set final axial strain = 0.01\n  set record interval = " << record_interval << "\nend\n";
+  return entries.str();
+}
+
+/// That biaxial test as `directory`/biaxial.prm; returns its path.
+std::string write_biaxial_input(const fs::path &directory, const fs::path &out, double record_interval)
+{
+  const fs::path file = directory / "biaxial.prm";
+  std::ofstream(file) << biaxial_entries(out, record_interval);
+  return file.string();
 }
 } // namespace
 
@@ -78,14 +101,8 @@ TEST(FullDiskCommands, BiaxialStopsAtItsCurve)
 {
   const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
   const fs::path d = directory.path, out = d / "out";
-  std::ofstream(d / "biaxial.prm") << "set output directory = " << out.string() << "\n"
-                                   << "set threads = 1\n"
-                                   << "subsection Sample\n  set number of particles = 200\n  set width = 0.05\n"
-                                   << "  set height = 0.08\n  set porosity tolerance = 0.01\nend\n"
-                                   << "subsection Test\n  set confining stresses = 20e3\n  set inertial number = 1e-3\n"
-                                   << "  set final axial strain = 0.01\n  set record interval = 1.1e-4\nend\n";
-  const int status = geohybrid::testing::run_geohybrid_with_file_size_limit({"biaxial", (d / "biaxial.prm").string()},
-                                                                            d / "biaxial.log", 6 << 10);
+  const int status = geohybrid::testing::run_geohybrid_with_file_size_limit(
+    {"biaxial", write_biaxial_input(d, out, 1.1e-4)}, d / "biaxial.log", 6 << 10);
   expect_stopped_at(status, d / "biaxial.log", out / "biaxial_20kPa.csv", out);
 }
 
@@ -97,14 +114,8 @@ TEST(FullDiskCommands, BiaxialStopsAtItsContinuumFragment)
 {
   const geohybrid::testing::TemporaryDirectory directory("test_app_full_disk");
   const fs::path d = directory.path, out = d / "out";
-  std::ofstream(d / "biaxial.prm") << "set output directory = " << out.string() << "\n"
-                                   << "set threads = 1\n"
-                                   << "subsection Sample\n  set number of particles = 200\n  set width = 0.05\n"
-                                   << "  set height = 0.08\n  set porosity tolerance = 0.01\nend\n"
-                                   << "subsection Test\n  set confining stresses = 20e3\n  set inertial number = 1e-3\n"
-                                   << "  set final axial strain = 0.01\n  set record interval = 1e-4\nend\n";
   const int status = geohybrid::testing::run_geohybrid_with_full_files(
-    {"biaxial", (d / "biaxial.prm").string()}, d / "biaxial.log", "continuum_soil.prm,continuum_soil.prm.tmp");
+    {"biaxial", write_biaxial_input(d, out, 1e-4)}, d / "biaxial.log", "continuum_soil.prm,continuum_soil.prm.tmp");
   expect_stopped_at(status, d / "biaxial.log", out / "continuum_soil.prm", out);
   EXPECT_FALSE(fs::exists(out / "continuum_soil.prm"));
   EXPECT_FALSE(fs::exists(out / "continuum_soil.prm.tmp"));
@@ -264,18 +275,12 @@ TEST(FullDiskCommands, FemPulloutStopsAtItsSummary)
 
 namespace
 {
-/// A calibration of 200 clusters at one confinement, 1 % strain (a few seconds), whose loose
+/// A calibration of the biaxial test above (200 particles, one confinement, 1 % strain), whose loose
 /// tolerances are met at its first campaign: it then writes its fragment and summary.json.
 std::string write_calibrate_input(const fs::path &directory, const fs::path &out)
 {
   const fs::path file = directory / "calibrate.prm";
-  std::ofstream(file) << "set output directory = " << out.string() << "\n"
-                      << "set threads = 1\n"
-                      << "subsection Sample\n  set number of particles = 200\n  set width = 0.05\n"
-                      << "  set height = 0.08\n  set porosity tolerance = 0.01\nend\n"
-                      << "subsection Test\n  set confining stresses = 20e3\n  set inertial number = 1e-3\n"
-                      << "  set final axial strain = 0.01\n  set record interval = 1e-4\nend\n"
-                      << "subsection Calibration\n  set target friction angle = 30\n"
+  std::ofstream(file) << biaxial_entries(out, 1e-4) << "subsection Calibration\n  set target friction angle = 30\n"
                       << "  set target Young modulus = 20e6\n  set friction angle tolerance = 89\n"
                       << "  set Young modulus tolerance = 1000\n  set maximum iterations = 1\nend\n";
   return file.string();
