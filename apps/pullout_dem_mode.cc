@@ -233,13 +233,8 @@ int run_pullout_dem_mode(ParameterHandler &prm, const PullOutInput &in, const st
   const GrainBounds tank_inside{0.0, g.tank_length, 0.0, std::numeric_limits<double>::infinity(), "the tank"};
   const PullWatch::Setup watch_setup{in.pull.record_interval, in.pull.ramp_displacement, tank_inside, true};
   PullWatch watch(watch_setup, system, pulled ? &saved : nullptr);
-  std::cout << "pullout: fill steps per layer (growth + settling)";
-  for (const dem::TankLayer &layer : tank.tank.layers)
-    std::cout << ' ' << layer.n_growth_steps << '+' << layer.n_settling_steps << (layer.from_cache ? " (kept lift)" : "");
-  std::cout << ", lowest growth friction per layer";
-  for (const dem::TankLayer &layer : tank.tank.layers)
-    std::cout << ' ' << number(layer.growth_friction_deg, 3);
-  std::cout << " deg, settling with the sheet freed " << tank.n_final_settling_steps << "; time step "
+  std::cout << "pullout: " << fill_steps_per_layer(tank.tank);
+  std::cout << ", settling with the sheet freed " << tank.n_final_settling_steps << "; time step "
             << number(system.time_step(), 4) << " s (critical " << number(system.critical_time_step(), 4)
             << " s); the pull takes " << pull->expected_steps() << " steps" << std::endl;
   ProgressReport progress("pulling", in.pull.final_displacement - u_first);

@@ -249,6 +249,8 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
       }));
       fill_progress.finish();
       fill_time = seconds();
+      std::cout << "pullout: the box's " << fill_steps_per_layer(filled->tank) << ", settling with the sheet freed "
+                << filled->n_final_settling_steps << std::endl;
       dem::CommandState c;
       dem::store_pullout_tank(*filled, c);
       c.reals["fill_wall_time_s"] = {fill_time};

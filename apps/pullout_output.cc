@@ -172,6 +172,19 @@ void PulloutOutput::fill_summary(Summary &summary, const std::string &mode, cons
     }
 }
 
+std::string fill_steps_per_layer(const dem::FilledTank &filled)
+{
+  std::ostringstream text;
+  text << "fill steps per layer (growth + settling)";
+  for (const dem::TankLayer &layer : filled.layers)
+    text << ' ' << layer.n_growth_steps << '+' << layer.n_settling_steps << (layer.from_cache ? " (kept lift)" : "");
+  text << ", lowest growth friction per layer";
+  for (const dem::TankLayer &layer : filled.layers)
+    text << ' ' << number(layer.growth_friction_deg, 3);
+  text << " deg";
+  return text.str();
+}
+
 void add_dem_sheet_point(PulloutOutput &output, const dem::PullOutTank &tank, const dem::SparSheet &sheet,
                          const dem::PullPoint &point, const dem::Vec2 &origin)
 {

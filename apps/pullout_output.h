@@ -107,6 +107,10 @@ bool pull_with_checkpoints(dem::PullOut &pull, const std::function<void(const de
 void add_dem_sheet_point(PulloutOutput &output, const dem::PullOutTank &tank, const dem::SparSheet &sheet,
                          const dem::PullPoint &point, const dem::Vec2 &origin = dem::Vec2::Zero());
 
+/// The fill's steps per lift, "growth + settling" (a kept lift marked), and the lowest growth
+/// friction each lift reached: where a fill's time went (dem and hybrid modes).
+std::string fill_steps_per_layer(const dem::FilledTank &filled);
+
 /// The summary keys of the DEM sheet as laid and of the soil's stress on it before the pull (dem
 /// and hybrid modes): its nodes, its level and depth as laid (tank frame), gamma H, the normal
 /// stresses on its faces, and the one-face friction top face x L x tan(delta).
