@@ -92,6 +92,8 @@ ParticleBox box_in_lifts(const HybridPullOutSpec &spec, const Lifts &lifts, cons
     }
   t.filling.n_layers = box.n_lifts;
   t.filling.n_particles = box.n_particles;
+  // A shared top is not the soil's surface: the top lift's porosity is measured a band below it.
+  t.filling.soil_continues_above = box.top_shared;
   if (!t.filling.layer_porosities.empty())
     {
       double mean = 0.0;

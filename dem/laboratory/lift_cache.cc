@@ -94,6 +94,9 @@ std::uint64_t lift_cache_key(const TankFillingSpec &t, std::size_t layer_index, 
   h.count(layer_index);
   for (const double v : {layer.bottom, layer.top, layer.target_porosity, lid_level})
     h.real(v);
+  if (layer.measured_bottom != layer.bottom || layer.measured_top != layer.top) // keys made before kept
+    for (const double v : {layer.measured_bottom, layer.measured_top})
+      h.real(v);
   h.count(layer.first_body);
   h.count(layer.n_bodies);
   for (const double v : {s.width, s.height, s.cluster_diameter_ratio, s.cluster_spacing, s.density, s.target_porosity,

@@ -18,17 +18,19 @@ DemSystemState grow_lift(ParticleSet particles, const TankFillingSpec &t, const 
   // rigid under the next one): their share of the slab is constant. The grains of the layer
   // below that stand in the slab (its band) stay free, so that they can rearrange with the new
   // grains, as the top of a lift does when the next one is compacted on it.
+  // The porosity is that of the measured part of the slab (TankLayer::measured_bottom, _top).
+  const double y0 = layer.measured_bottom, y1 = layer.measured_top;
   double fixed_solid = 0.0;
   std::vector<std::size_t> free_below;
   for (std::size_t b = 0; b < first_body; ++b)
     if (particles.y[b] < layer.bottom)
       {
         particles.fix_body(b);
-        fixed_solid += share_in_slab(particles, b, layer.bottom, layer.top) * particles.body_area(b);
+        fixed_solid += share_in_slab(particles, b, y0, y1) * particles.body_area(b);
       }
     else
       free_below.push_back(b);
-  const double sheet_area = sheet_area_in_slab(laid, 0.0, t.width, layer.bottom, layer.top);
+  const double sheet_area = sheet_area_in_slab(laid, 0.0, t.width, y0, y1);
   std::vector<double> starting_area(layer.n_bodies);
   for (std::size_t i = 0; i < layer.n_bodies; ++i)
     starting_area[i] = particles.body_area(first_body + i);
@@ -46,10 +48,10 @@ DemSystemState grow_lift(ParticleSet particles, const TankFillingSpec &t, const 
     const ParticleSet &p = growing.particles();
     double solid = fixed_solid, grown_solid = 0.0; // grown_solid at the starting sizes
     for (const std::size_t b : free_below)
-      solid += share_in_slab(p, b, layer.bottom, layer.top) * p.body_area(b);
+      solid += share_in_slab(p, b, y0, y1) * p.body_area(b);
     for (std::size_t i = 0; i < layer.n_bodies; ++i)
-      grown_solid += share_in_slab(p, first_body + i, layer.bottom, layer.top) * starting_area[i];
-    return 1.0 - (solid + area_factor * grown_solid) / (t.width * (layer.top - layer.bottom) - sheet_area);
+      grown_solid += share_in_slab(p, first_body + i, y0, y1) * starting_area[i];
+    return 1.0 - (solid + area_factor * grown_solid) / (t.width * (y1 - y0) - sheet_area);
   };
   growth.grow = [&](double factor) {
     growing.scale_particle_sizes(factor, first_body); // the lifts below keep their sizes

@@ -109,7 +109,7 @@ public:
     : t_(t), thickness_(t.height / static_cast<double>(t.n_layers)), cumulative_space_(t.n_layers + 1, 0.0)
   {
     const std::size_t n_layers = t.n_layers;
-    if (n_layers > 1)
+    if (n_layers > 1 || t.soil_continues_above)
       {
         const RedfSpec whole = layer_redf_spec(t, 0, t.n_particles, porosity(0));
         std::ostringstream region;
@@ -128,6 +128,13 @@ public:
   double bottom(std::size_t k) const { return static_cast<double>(k) * thickness_; }
   double top(std::size_t k) const { return k + 1 == t_.n_layers ? t_.height : static_cast<double>(k + 1) * thickness_; }
   double lid(std::size_t k) const { return has_band(k) ? top(k) + band_ : top(k); }
+  /// The part of lift k's slab whose porosity its growth aims at: a band below a lid past which
+  /// the soil goes on.
+  double measured_bottom(std::size_t k) const { return bottom(k); }
+  double measured_top(std::size_t k) const
+  {
+    return k + 1 == t_.n_layers && t_.soil_continues_above ? top(k) - band_ : top(k);
+  }
   /// The height of the space lift k fills (its slab, with its band, less the band below).
   double space(std::size_t k) const { return cumulative_space_[k + 1] - cumulative_space_[k]; }
   std::size_t n_particles(std::size_t k) const { return particles_before(k + 1) - particles_before(k); }
@@ -194,6 +201,8 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
       TankLayer layer;
       layer.bottom = plan.bottom(k);
       layer.top = plan.top(k);
+      layer.measured_bottom = plan.measured_bottom(k);
+      layer.measured_top = plan.measured_top(k);
       layer.target_porosity = plan.porosity(k);
       const LiftLevels levels{plan.lid(k), slot_bottom, slot_top};
       RedfSpec s = layer_redf_spec(t, k, plan.n_particles(k), layer.target_porosity);
@@ -262,7 +271,8 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
         laid.back() = lay_second_part(*t.sheet, *settled, laid.back(), t);
     }
   for (TankLayer &layer : layers)
-    layer.porosity = slab_porosity_beside_sheets(settled->particles(), settled->sheets(), t.width, layer.bottom, layer.top);
+    layer.porosity = slab_porosity_beside_sheets(settled->particles(), settled->sheets(), t.width,
+                                                 layer.measured_bottom, layer.measured_top);
   if (progress)
     progress(1.0);
   return FilledTank{std::move(*settled), walls, std::move(layers), slot_bottom, slot_top};

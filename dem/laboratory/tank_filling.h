@@ -122,6 +122,13 @@ struct TankFillingSpec
   /// lift's growth). One step above, the lift still jams above its porosity and reaches it by the
   /// last drop, as it did from the top. False: every lift starts where the first does.
   bool later_lifts_start_near_the_lift_below = true;
+  /// The soil goes on above the fill's top (a particle box under a continuum): the top lift's
+  /// lid is then not the soil's surface, and the loose band of grains along it (one grain) is
+  /// left out of that lift's porosity, which is measured a band below the lid, as every other
+  /// lift's is below the band its lid stands above. Measured to the lid, a 0.1 m lift between a
+  /// sheet and a lid could not reach porosity 0.2 even without friction. (A shared base is still
+  /// measured to it: left out there too, the lift above a 0.1 m first lift jammed instead.)
+  bool soil_continues_above = false;
   ContactParameters wall_contact;      ///< the tank's walls and the lid
   double gravity = 9.81;               ///< [m/s^2], pointing down (-y)
   double local_damping = 0.7;          ///< during growth and settling [-]
@@ -155,6 +162,9 @@ struct TankWalls
 struct TankLayer
 {
   double bottom = 0.0, top = 0.0;     ///< levels of the layer's slab [m]
+  /// The part of the slab whose porosity is measured: the slab but a band below a top beyond
+  /// which the soil goes on (TankFillingSpec::soil_continues_above) [m].
+  double measured_bottom = 0.0, measured_top = 0.0;
   /// The particles placed for this layer: bodies [first_body, first_body + n_bodies). Their
   /// number is in proportion to the space the layer fills (the first layer fills its band too,
   /// the last one the band of the layer below), so that all layers have the same sizes.
