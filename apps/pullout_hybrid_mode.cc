@@ -1,6 +1,7 @@
 #include "pullout_hybrid_mode.h"
 
 #include "apps/coupling_diagnostics_file.h"
+#include "apps/hybrid_box_source.h"
 #include "apps/interrupt.h"
 #include "apps/pullout_fem_mode.h"
 #include "apps/parameters_hash.h"
@@ -93,6 +94,11 @@ void declare_hybrid_parameters(ParameterHandler &prm)
                     "hybrid mode, coupling method = " + multipliers + ": the continuum steps once per this many "
                     "particle steps (multi-rate: its stable step is many of the particles'; docs/coupling.md); 1 "
                     "steps both together, 0 takes the largest ratio the continuum is stable at [-]");
+  prm.declare_entry("particles from", "", Patterns::Anything(),
+                    "hybrid mode: empty fills the particle box in its own lifts; a dem-mode run's filled_tank.h5 "
+                    "(the same input but for the mode and subsections Hybrid, Continuum, Pull, Output) cuts the box "
+                    "out of that tank instead, its grains wholly inside the box: the hybrid then pulls the grains "
+                    "pure DEM pulled round the sheet, and the two differ only by the continuum and the coupling");
   prm.declare_entry("fill under overburden", region.fill_under_overburden ? "true" : "false", Patterns::Bool(),
                     "hybrid mode: before the coupling, load the particle box's top with the weight of the soil "
                     "above it, gamma (fill height - box top), through a frictionless servo-controlled lid, and "
@@ -196,6 +202,13 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   // continuum's states with the pull's progress and the rows recorded. Each keeps the input, and
   // a resume with another is refused before a file is written (resume_check.h).
   const std::filesystem::path box_file = out / "filled_box.h5", checkpoint_file = out / "checkpoint.h5";
+  prm.enter_subsection("Hybrid");
+  const std::string particles_from = prm.get("particles from");
+  prm.leave_subsection();
+  // Cut before a file is written: a tank that does not fit is refused with nothing begun.
+  std::optional<dem::PullOutTank> cut;
+  if (!particles_from.empty() && !(resume && std::filesystem::exists(box_file)))
+    cut.emplace(box_cut_from_filled_tank(particles_from, prm, in.tank, box, where));
   if (resume)
     for (const auto &file : {box_file, checkpoint_file})
       if (std::filesystem::exists(file))
@@ -242,15 +255,25 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
         std::cout << "geohybrid pullout: no checkpoint in " << out.string()
                   << " (the run stopped before its box was full): filling the box again from the start" << std::endl;
       std::filesystem::remove(checkpoint_file);
-      ProgressReport fill_progress("filling the particle box", 1.0);
-      filled.emplace(dem::fill_pull_out_tank(box.box_tank, [&](double f) {
-        fill_progress.update(f);
-        throw_if_interrupted("filling the particle box"); // a partial fill cannot be resumed
-      }));
-      fill_progress.finish();
+      if (cut)
+        {
+          filled.emplace(std::move(*cut));
+          cut.reset();
+          std::cout << "pullout: the particle box cut from " << particles_from << ": "
+                    << filled->tank.system.particles().n_bodies() << " grains wholly inside it" << std::endl;
+        }
+      else
+        {
+          ProgressReport fill_progress("filling the particle box", 1.0);
+          filled.emplace(dem::fill_pull_out_tank(box.box_tank, [&](double f) {
+            fill_progress.update(f);
+            throw_if_interrupted("filling the particle box"); // a partial fill cannot be resumed
+          }));
+          fill_progress.finish();
+          std::cout << "pullout: the box's " << fill_steps_per_layer(filled->tank) << ", settling with the sheet freed "
+                    << filled->n_final_settling_steps << std::endl;
+        }
       fill_time = seconds();
-      std::cout << "pullout: the box's " << fill_steps_per_layer(filled->tank) << ", settling with the sheet freed "
-                << filled->n_final_settling_steps << std::endl;
       dem::CommandState c;
       dem::store_pullout_tank(*filled, c);
       c.reals["fill_wall_time_s"] = {fill_time};

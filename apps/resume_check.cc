@@ -67,19 +67,13 @@ void store_input(const dealii::ParameterHandler &prm, const dealii::ParameterHan
   command.texts[checkpoint_input_key] = canonical_parameters(prm, defaults, {});
 }
 
-void check_resumed_input(const dem::CommandState &saved, const dealii::ParameterHandler &prm,
-                         const dealii::ParameterHandler &defaults, const std::vector<std::string> &may_differ,
-                         const std::filesystem::path &checkpoint, const std::string &where, const std::string &command)
+std::optional<std::string> differing_entries(const dem::CommandState &saved, const dealii::ParameterHandler &prm,
+                                             const dealii::ParameterHandler &defaults,
+                                             const std::vector<std::string> &may_differ)
 {
   const auto stored = saved.texts.find(checkpoint_input_key);
   if (stored == saved.texts.end())
-    {
-      // The validation campaign's checkpoints in flight were written so: they must still resume.
-      std::cout << command << ": " << checkpoint.string()
-                << " was written before checkpoints kept their input: resuming it without checking that " << where
-                << " is the input that made it" << std::endl;
-      return;
-    }
+    return std::nullopt;
   const std::map<std::string, std::string> then = record_entries(stored->second),
                                            now = record_entries(canonical_parameters(prm, defaults, {}));
   std::set<std::string> entries;
@@ -87,10 +81,15 @@ void check_resumed_input(const dem::CommandState &saved, const dealii::Parameter
     entries.insert(e.first);
   for (const auto &e : now)
     entries.insert(e.first);
+  const auto allowed = [&](const std::string &entry) {
+    return std::any_of(may_differ.begin(), may_differ.end(), [&](const std::string &m) {
+      return m == entry || (!m.empty() && m.back() == '/' && entry.rfind(m, 0) == 0);
+    });
+  };
   std::string differing;
   for (const std::string &entry : entries)
     {
-      if (std::find(may_differ.begin(), may_differ.end(), entry) != may_differ.end())
+      if (allowed(entry))
         continue;
       std::string then_shown, now_shown;
       if (value_in(then, entry, defaults, then_shown) == value_in(now, entry, defaults, now_shown))
@@ -98,14 +97,30 @@ void check_resumed_input(const dem::CommandState &saved, const dealii::Parameter
       differing += std::string(differing.empty() ? "" : "; ") + "'" + entry + "' = " + now_shown +
                    " (checkpoint: " + then_shown + ")";
     }
-  if (differing.empty())
+  return differing;
+}
+
+void check_resumed_input(const dem::CommandState &saved, const dealii::ParameterHandler &prm,
+                         const dealii::ParameterHandler &defaults, const std::vector<std::string> &may_differ,
+                         const std::filesystem::path &checkpoint, const std::string &where, const std::string &command)
+{
+  const std::optional<std::string> differing = differing_entries(saved, prm, defaults, may_differ);
+  if (!differing)
+    {
+      // The validation campaign's checkpoints in flight were written so: they must still resume.
+      std::cout << command << ": " << checkpoint.string()
+                << " was written before checkpoints kept their input: resuming it without checking that " << where
+                << " is the input that made it" << std::endl;
+      return;
+    }
+  if (differing->empty())
     return;
   std::string allowed;
   for (const std::string &entry : may_differ)
     allowed += (allowed.empty() ? "'" : ", '") + entry + "'";
   throw std::invalid_argument("cannot resume from '" + checkpoint.string() + "': " + where +
                               " differs from the input of the run that wrote it in entries that change its results: " +
-                              differing + ". Only " + allowed +
+                              *differing + ". Only " + allowed +
                               " may change on resuming; give the checkpoint's values, or run it again without --resume "
                               "(with --overwrite)");
 }

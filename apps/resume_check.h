@@ -7,6 +7,7 @@
 #include "dem/io/checkpoint.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,14 @@ inline constexpr const char *checkpoint_input_key = "input";
 /// Stores the input of the run, canonical_parameters(prm, defaults, {}), in `command`.
 void store_input(const dealii::ParameterHandler &prm, const dealii::ParameterHandler &defaults,
                  dem::CommandState &command);
+
+/// The entries of `prm` whose values differ from those of the input that `saved` keeps, but
+/// those in `may_differ` (an entry's path, or a subsection's ending in '/': all its entries),
+/// each as "'entry' = now (checkpoint: then)", joined by "; "; empty if none differs, nullopt if
+/// `saved` keeps no input (written before checkpoints kept it).
+std::optional<std::string> differing_entries(const dem::CommandState &saved, const dealii::ParameterHandler &prm,
+                                             const dealii::ParameterHandler &defaults,
+                                             const std::vector<std::string> &may_differ);
 
 /// Refuses (std::invalid_argument) to resume from `checkpoint`, whose command state is `saved`,
 /// with the input `prm` (read from `where`) if an entry not in `may_differ` has another value

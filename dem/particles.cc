@@ -231,9 +231,20 @@ ParticleSet spatially_sorted(const ParticleSet &p, double cell_size)
     order[b] = {morton_key(cell(p.x[b] - x_min), cell(p.y[b] - y_min)), static_cast<std::uint32_t>(b)};
   std::sort(order.begin(), order.end()); // ties: by the original index
 
+  std::vector<std::uint32_t> bodies(nb);
+  for (std::size_t k = 0; k < nb; ++k)
+    bodies[k] = order[k].second;
+  return bodies_of(p, bodies);
+}
+
+ParticleSet bodies_of(const ParticleSet &p, const std::vector<std::uint32_t> &bodies)
+{
+  std::size_t n_discs = 0;
+  for (const std::uint32_t b : bodies)
+    n_discs += p.n_discs[b];
   ParticleSet s;
-  s.reserve(nb, p.n_discs_total());
-  for (const auto &[key, b] : order)
+  s.reserve(bodies.size(), n_discs);
+  for (const std::uint32_t b : bodies)
     {
       s.body_id.push_back(p.body_id[b]);
       for (auto [to, from] : {std::pair{&s.x, &p.x}, {&s.y, &p.y}, {&s.rotation, &p.rotation}, {&s.vx, &p.vx},

@@ -126,6 +126,10 @@ inline double ParticleSet::disc_move2(std::size_t b, const double *reference_x, 
 /// Generators that place particles at random (REDF, tank filling) sort before building a system.
 ParticleSet spatially_sorted(const ParticleSet &particles, double cell_size);
 
+/// The listed bodies of `particles`, in that order, each with everything it has (id, state,
+/// mass, its discs).
+ParticleSet bodies_of(const ParticleSet &particles, const std::vector<std::uint32_t> &bodies);
+
 /// Mass properties of the union of two overlapping discs, per unit density and thickness.
 struct TwoDiscGeometry
 {

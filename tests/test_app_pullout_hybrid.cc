@@ -102,7 +102,12 @@ TEST(PullOutHybridMode, BadInputNamesTheEntryAndTheFile)
                         // across: the entries to change, with values that work.
                         Case{"subsection Filling\n  set number of particles = 1000\nend\n",
                              "set 'Filling/number of particles' to "},
-                        Case{"subsection Filling\n  set number of particles = 1000\nend\n", "'Hybrid/lift thickness' = 0.05"}})
+                        Case{"subsection Filling\n  set number of particles = 1000\nend\n", "'Hybrid/lift thickness' = 0.05"},
+                        // The box cut from a tank that is not there, or from a hybrid run's box.
+                        Case{"subsection Hybrid\n  set particles from = no_such_tank.h5\nend\n",
+                             "parameter 'Hybrid/particles from' = 'no_such_tank.h5': cannot read a filled tank there"},
+                        Case{"subsection Hybrid\n  set particles from = " GEOHYBRID_SOURCE_DIR "/tests/main_job/filled_box.h5\nend\n",
+                             "/tests/main_job/filled_box.h5': not a dem-mode run's tank"}})
     {
       const std::string file = geohybrid::testing::write_small_hybrid_pullout_input(d, c.extra);
       const std::string error = error_of(file);
