@@ -98,7 +98,8 @@ void declare_hybrid_parameters(ParameterHandler &prm)
                     "hybrid mode: empty fills the particle box in its own lifts; a dem-mode run's filled_tank.h5 "
                     "(the same input but for the mode and subsections Hybrid, Continuum, Pull, Output) cuts the box "
                     "out of that tank instead, its grains wholly inside the box: the hybrid then pulls the grains "
-                    "pure DEM pulled round the sheet, and the two differ only by the continuum and the coupling");
+                    "pure DEM pulled round the sheet, and the two differ only by the continuum and the coupling "
+                    "(a given 'lift thickness' then shapes the box whatever the grains' size)");
   prm.declare_entry("fill under overburden", region.fill_under_overburden ? "true" : "false", Patterns::Bool(),
                     "hybrid mode: before the coupling, load the particle box's top with the weight of the soil "
                     "above it, gamma (fill height - box top), through a frictionless servo-controlled lid, and "
@@ -155,6 +156,7 @@ coupling::HybridPullOutSpec parse_hybrid(ParameterHandler &prm, const PullOutInp
   r.scale_band_inertia = prm.get_bool("scale band inertia");
   r.continuum_step_ratio = static_cast<unsigned int>(prm.get_integer("continuum step ratio"));
   r.fill_under_overburden = prm.get_bool("fill under overburden");
+  r.box_cut_from_a_filled_tank = !prm.get("particles from").empty();
   prm.leave_subsection();
 
   const ContinuumSoilInput soil = parse_continuum_soil(prm);

@@ -86,6 +86,9 @@ struct HybridRegionSpec
   /// The box's lifts are at most this thick; 0 = automatic, from the grains and the margin
   /// (particle_box.h) [m].
   double lift_thickness = 0.0;
+  /// The box is cut out of a filled tank (the app's 'Hybrid/particles from'), not filled: given
+  /// lifts then set only its shape, whatever the grains' size.
+  bool box_cut_from_a_filled_tank = false;
   double band_width = 0.0;       ///< w; 0 = four mean grain sizes [m]
   double cell_size = 0.0;        ///< of the continuum's cells in the band and over the core's span; 0 = w / 2 [m]
   /// The cells grow (by 1.3 per cell) away from the band up to this size; 0 = 4 x cell_size [m].

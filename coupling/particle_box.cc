@@ -214,7 +214,7 @@ ParticleBox particle_box(const HybridPullOutSpec &spec, const std::string &where
     {
       const Lifts given = lifts_at_most(spec, spec.region.lift_thickness);
       const ParticleBox box = box_in_lifts(spec, given, where);
-      if (takes_its_grains(box, 1.0))
+      if (takes_its_grains(box, 1.0) || spec.region.box_cut_from_a_filled_tank)
         return box;
       std::ostringstream message;
       message << where << ": parameter 'Hybrid/lift thickness' = " << spec.region.lift_thickness << " cuts the particle box into "

@@ -139,6 +139,12 @@ TEST(ParticleBoxLifts, RefusalsNameTheEntryTheFileAndAValueThatWorks)
   EXPECT_LE(enough, 8700u);
   given.tank.filling.n_particles = enough;
   EXPECT_NO_THROW(particle_box(given, "main_job.prm"));
+  // Cut out of a filled tank, the box is not filled: the lifts only shape it, as given.
+  given.tank.filling.n_particles = 7500;
+  given.region.box_cut_from_a_filled_tank = true;
+  const ParticleBox cut = particle_box(given, "main_job.prm");
+  EXPECT_NEAR(cut.lift_thickness, 0.1, 1e-12);
+  EXPECT_NEAR(cut.y0, given.tank.geometry.sheet_level() - given.region.margin, 1e-12);
 
   // 2,000 clusters, grains up to 0.04 m: even one lift of the 0.2 m below the sheet is too thin.
   HybridPullOutSpec coarse = paper_tank(2000);
