@@ -105,12 +105,7 @@ DemPullStart fill_or_resume_tank(ParameterHandler &prm, const PullOutInput &in, 
     }
   else
     {
-      ProgressReport fill_progress("filling the tank", 1.0);
-      filled.emplace(dem::fill_pull_out_tank(in.tank, [&](double f) {
-        fill_progress.update(f);
-        throw_if_interrupted("filling the tank"); // a partial fill cannot be resumed
-      }));
-      fill_progress.finish();
+      filled.emplace(fill_with_progress(in.tank, "the tank"));
       start.fill_time = clock.seconds();
       start.before = dem::measure_sheet_level_stress(filled->tank.system, *filled, g, in.stress_band);
       saved = dem::CommandState();

@@ -266,12 +266,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
         }
       else
         {
-          ProgressReport fill_progress("filling the particle box", 1.0);
-          filled.emplace(dem::fill_pull_out_tank(box.box_tank, [&](double f) {
-            fill_progress.update(f);
-            throw_if_interrupted("filling the particle box"); // a partial fill cannot be resumed
-          }));
-          fill_progress.finish();
+          filled.emplace(fill_with_progress(box.box_tank, "the particle box"));
           std::cout << "pullout: the box's " << fill_steps_per_layer(filled->tank) << ", settling with the sheet freed "
                     << filled->n_final_settling_steps << std::endl;
         }

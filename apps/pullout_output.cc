@@ -172,6 +172,18 @@ void PulloutOutput::fill_summary(Summary &summary, const std::string &mode, cons
     }
 }
 
+dem::PullOutTank fill_with_progress(const dem::PullOutTankSpec &spec, const std::string &what)
+{
+  const std::string doing = "filling " + what;
+  ProgressReport progress(doing, 1.0);
+  dem::PullOutTank filled = dem::fill_pull_out_tank(spec, [&](double f) {
+    progress.update(f);
+    throw_if_interrupted(doing); // a partial fill cannot be resumed
+  });
+  progress.finish();
+  return filled;
+}
+
 std::string fill_steps_per_layer(const dem::FilledTank &filled)
 {
   std::ostringstream text;

@@ -107,6 +107,10 @@ bool pull_with_checkpoints(dem::PullOut &pull, const std::function<void(const de
 void add_dem_sheet_point(PulloutOutput &output, const dem::PullOutTank &tank, const dem::SparSheet &sheet,
                          const dem::PullPoint &point, const dem::Vec2 &origin = dem::Vec2::Zero());
 
+/// dem::fill_pull_out_tank with a progress report "filling <what>" ("the tank", "the particle
+/// box"); a SIGINT or SIGTERM stops it (Interrupted: a partial fill cannot be resumed).
+dem::PullOutTank fill_with_progress(const dem::PullOutTankSpec &spec, const std::string &what);
+
 /// The fill's steps per lift, "growth + settling" (a kept lift marked), and the lowest growth
 /// friction each lift reached: where a fill's time went (dem and hybrid modes).
 std::string fill_steps_per_layer(const dem::FilledTank &filled);

@@ -36,6 +36,17 @@ TankFillingSpec small_tank()
   t.seed = 5;
   return t;
 }
+
+/// The small tank's first two lifts (0.09 m, 200 clusters), both at porosity 0.205.
+TankFillingSpec two_lifts()
+{
+  TankFillingSpec t = small_tank();
+  t.height = 0.09;
+  t.n_layers = 2;
+  t.n_particles = 200;
+  t.layer_porosities = {0.205, 0.205};
+  return t;
+}
 } // namespace
 
 TEST(TankFilling, LayersAtTargetPorosityInEquilibriumUnderGravity)
@@ -108,11 +119,7 @@ TEST(TankFilling, LayersAtTargetPorosityInEquilibriumUnderGravity)
 // 6,000-cluster wrap-around tank all end at 4.02 deg, and the later ones take a tenth.)
 TEST(TankFilling, LaterLiftsStartNearTheFrictionOfTheLiftBelow)
 {
-  TankFillingSpec spec = small_tank();
-  spec.height = 0.09;
-  spec.n_layers = 2;
-  spec.n_particles = 200;
-  spec.layer_porosities = {0.205, 0.205};
+  TankFillingSpec spec = two_lifts();
   spec.particle_contact.friction_angle_deg = 20.0;
   spec.later_lifts_start_near_the_lift_below = false;
   const FilledTank from_the_top = fill_tank_in_layers(spec);
@@ -144,11 +151,7 @@ TEST(TankFilling, LaterLiftsStartNearTheFrictionOfTheLiftBelow)
 // slab, its loose band along the lid with it, is looser than that (measured: 0.214 against 0.207).
 TEST(TankFilling, SoilGoingOnAboveTheFillIsMeasuredABandBelowTheLid)
 {
-  TankFillingSpec spec = small_tank();
-  spec.height = 0.09;
-  spec.n_layers = 2;
-  spec.n_particles = 200;
-  spec.layer_porosities = {0.205, 0.205};
+  TankFillingSpec spec = two_lifts();
   spec.soil_continues_above = true;
   const FilledTank tank = fill_tank_in_layers(spec);
   const double band = largest_particle_extent(spec);
