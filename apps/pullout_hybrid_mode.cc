@@ -97,7 +97,7 @@ void declare_hybrid_parameters(ParameterHandler &prm)
   prm.declare_entry("particles from", "", Patterns::Anything(),
                     "hybrid mode: empty fills the particle box in its own lifts; a dem-mode run's filled_tank.h5 "
                     "(the same input but for the mode and subsections Hybrid, Continuum, Pull, Output) cuts the box "
-                    "out of that tank instead, its grains wholly inside the box: the hybrid then pulls the grains "
+                    "out of that tank instead, the grains whose centres lie in the box: the hybrid then pulls the grains "
                     "pure DEM pulled round the sheet, and the two differ only by the continuum and the coupling "
                     "(a given 'lift thickness' then shapes the box whatever the grains' size)");
   prm.declare_entry("fill under overburden", region.fill_under_overburden ? "true" : "false", Patterns::Bool(),
@@ -262,7 +262,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
           filled.emplace(std::move(*cut));
           cut.reset();
           std::cout << "pullout: the particle box cut from " << particles_from << ": "
-                    << filled->tank.system.particles().n_bodies() << " grains wholly inside it" << std::endl;
+                    << filled->tank.system.particles().n_bodies() << " grains, their centres inside it, in the tank's stress (no settling under a lid)" << std::endl;
         }
       else
         {

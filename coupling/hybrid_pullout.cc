@@ -167,7 +167,8 @@ void HybridPullOut::set_up_coupled_model(const HybridPullOutSpec &spec, const st
   using Clock = std::chrono::steady_clock;
   const auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   const Clock::time_point box_settling_start = Clock::now();
-  if (spec.region.fill_under_overburden && box_.top_shared)
+  // A box cut out of a filled tank already stands under the whole overburden, as the tank's soil.
+  if (spec.region.fill_under_overburden && box_.top_shared && !spec.region.box_cut_from_a_filled_tank)
     {
       set_up_.overburden = spec.tank.unit_weight * (g.fill_height - box_.y1);
       const OverburdenSettling settled = settle_under_overburden(

@@ -87,7 +87,8 @@ struct HybridRegionSpec
   /// (particle_box.h) [m].
   double lift_thickness = 0.0;
   /// The box is cut out of a filled tank (the app's 'Hybrid/particles from'), not filled: given
-  /// lifts then set only its shape, whatever the grains' size.
+  /// lifts then set only its shape, whatever the grains' size, and it is not settled under its
+  /// overburden (fill_under_overburden): its grains stand as they stood in the tank, under it all.
   bool box_cut_from_a_filled_tank = false;
   double band_width = 0.0;       ///< w; 0 = four mean grain sizes [m]
   double cell_size = 0.0;        ///< of the continuum's cells in the band and over the core's span; 0 = w / 2 [m]

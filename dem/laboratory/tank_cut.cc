@@ -2,6 +2,7 @@
 
 #include "tank_walls.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
@@ -30,20 +31,13 @@ PullOutTank cut_pull_out_tank(const PullOutTank &tank, double tank_length, const
       throw std::invalid_argument(where + ": the sheet's node " + std::to_string(k) +
                                   " lies outside the region cut from the filled tank");
 
-  // The grains wholly inside, at rest: those cut by a side would overlap its wall.
+  // The grains whose centres lie inside, at rest: a grain cut by a side stays, as the soil beyond
+  // it goes on (left out, they left a looser ring round the box).
   const ParticleSet &all = tank.tank.system.particles();
   std::vector<std::uint32_t> inside;
   for (std::size_t b = 0; b < all.n_bodies(); ++b)
-    {
-      bool in = true;
-      for (std::uint32_t d = all.first_disc[b]; in && d < all.first_disc[b] + all.n_discs[b]; ++d)
-        {
-          const double r = all.disc_radius[d];
-          in = all.disc_x[d] - r >= x0 && all.disc_x[d] + r <= x1 && all.disc_y[d] - r >= y0 && all.disc_y[d] + r <= y1;
-        }
-      if (in)
-        inside.push_back(static_cast<std::uint32_t>(b));
-    }
+    if (all.x[b] >= x0 && all.x[b] <= x1 && all.y[b] >= y0 && all.y[b] <= y1)
+      inside.push_back(static_cast<std::uint32_t>(b));
   ParticleSet particles = bodies_of(all, inside);
   for (std::size_t b = 0; b < particles.n_bodies(); ++b)
     {
@@ -53,6 +47,15 @@ PullOutTank cut_pull_out_tank(const PullOutTank &tank, double tank_length, const
       particles.fx[b] = particles.fy[b] = particles.torque[b] = 0.0;
     }
   particles.update_disc_positions();
+  // How far the cut grains stand past the region's left side, its base and its top.
+  double left = 0.0, below = 0.0, above = 0.0;
+  for (std::size_t d = 0; d < particles.n_discs_total(); ++d)
+    {
+      const double r = particles.disc_radius[d];
+      left = std::max(left, -(particles.disc_x[d] - r));
+      below = std::max(below, -(particles.disc_y[d] - r));
+      above = std::max(above, particles.disc_y[d] + r - f.height);
+    }
 
   SparSheet sheet = laid;
   for (std::size_t k = 0; k < sheet.n_nodes(); ++k)
@@ -64,12 +67,15 @@ PullOutTank cut_pull_out_tank(const PullOutTank &tank, double tank_length, const
     }
 
   DemSystem system(std::move(particles), LinearContactLaw(f.particle_contact), tank_settling_settings(f));
-  // The lid parked one lift above the fill, as a fill leaves it; the front wall's slot where the
-  // tank's is.
-  const double parked = f.height + f.height / static_cast<double>(f.n_layers);
+  // The lid parked one lift above the fill, as a fill leaves it, and above the grains cut by the
+  // top; the base and the left wall moved out past the grains cut by them (they touch none); the
+  // front wall's slot where the tank's is.
+  const double parked = f.height + above + f.height / static_cast<double>(f.n_layers);
   const FilledTank &t = tank.tank;
   const bool slot = t.slot_top > t.slot_bottom;
   const TankWalls walls = add_tank_walls(system, f, parked, slot ? t.slot_bottom - y0 : 0.0, slot ? t.slot_top - y0 : 0.0);
+  system.walls()[walls.left].translate(Vec2(-left, 0.0));
+  system.walls()[walls.base].translate(Vec2(0.0, -below));
   system.add_sheet(sheet);
 
   PullOutTank cut{FilledTank{std::move(system), walls, {}, slot ? t.slot_bottom - y0 : 0.0, slot ? t.slot_top - y0 : 0.0},
