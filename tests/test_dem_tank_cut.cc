@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -98,6 +99,33 @@ TEST(TankCut, KeepsTheGrainsWhoseCentresLieInsideMovedIntoTheRegionsFrame)
   EXPECT_NEAR(walls[cut.tank.walls.right].start.x(), x1 - x0, 1e-15);
   EXPECT_NEAR(walls[cut.tank.walls.right].end.y(), cut.tank.slot_bottom, 1e-15);
   EXPECT_GT(walls[cut.tank.walls.lid].start.y(), highest) << "the lid parked above the grains";
+
+  // The contacts between kept grains, and with the sheet, keep their tangential forces.
+  std::map<std::int64_t, bool> kept_id;
+  for (std::size_t b = 0; b < kept.n_bodies(); ++b)
+    kept_id[kept.body_id[b]] = true;
+  const auto kept_disc = [&](std::uint32_t d) { return kept_id.count(all.body_id[all.disc_body[d]]) > 0; };
+  const DemSystemState was = tank.tank.system.export_state(), now = cut.tank.system.export_state();
+  double friction_was = 0.0, friction_now = 0.0, sheet_was = 0.0, sheet_now = 0.0;
+  std::size_t pairs_was = 0;
+  for (std::size_t k = 0; k < was.pairs.size(); ++k)
+    if (kept_disc(was.pairs.disc_i[k]) && kept_disc(was.pairs.disc_j[k]))
+      {
+        ++pairs_was;
+        friction_was += std::abs(was.pairs.state[k].tangential_force);
+      }
+  for (std::size_t k = 0; k < now.pairs.size(); ++k)
+    friction_now += std::abs(now.pairs.state[k].tangential_force);
+  for (std::size_t k = 0; k < was.sheet_contacts[0].size(); ++k)
+    if (kept_disc(was.sheet_contacts[0].disc[k]))
+      sheet_was += std::abs(was.sheet_contacts[0].state[k].tangential_force);
+  for (std::size_t k = 0; k < now.sheet_contacts[0].size(); ++k)
+    sheet_now += std::abs(now.sheet_contacts[0].state[k].tangential_force);
+  EXPECT_EQ(now.pairs.size(), pairs_was);
+  EXPECT_GT(friction_was, 0.0);
+  EXPECT_EQ(friction_now, friction_was);
+  EXPECT_GT(sheet_was, 0.0);
+  EXPECT_EQ(sheet_now, sheet_was);
 }
 
 // A region that leaves the tank or misses its front wall, or one that leaves out part of the

@@ -11,6 +11,53 @@
 
 namespace geohybrid::dem
 {
+namespace
+{
+/// Gives the contacts of `to` (made of the bodies `kept` of `from`, in that order, and of its
+/// sheet) the history they had in `from`: the tangential forces between the kept grains and
+/// between them and the sheet, as the grains stood at rest there. The lists are found again at
+/// the first step, which carries each state over by its pair (contact_list.h).
+void carry_contact_history(const DemSystem &from, const std::vector<std::uint32_t> &kept, DemSystem &to)
+{
+  const ParticleSet &all = from.particles();
+  constexpr std::uint32_t none = static_cast<std::uint32_t>(-1);
+  // Each kept disc's index in `to`: increasing with its index in `from`, so sorted lists stay sorted.
+  std::vector<std::uint32_t> disc_in_to(all.n_discs_total(), none);
+  std::uint32_t next = 0;
+  for (const std::uint32_t b : kept)
+    for (std::uint32_t d = all.first_disc[b]; d < all.first_disc[b] + all.n_discs[b]; ++d)
+      disc_in_to[d] = next++;
+  const DemSystemState was = from.export_state();
+  DemSystemState s = to.export_state();
+  s.pairs = PairContacts();
+  for (std::size_t k = 0; k < was.pairs.size(); ++k)
+    {
+      const std::uint32_t i = disc_in_to[was.pairs.disc_i[k]], j = disc_in_to[was.pairs.disc_j[k]];
+      if (i == none || j == none)
+        continue;
+      s.pairs.disc_i.push_back(i);
+      s.pairs.disc_j.push_back(j);
+      s.pairs.state.push_back(was.pairs.state[k]);
+    }
+  s.pairs.resize_results();
+  SheetContacts &sheet = s.sheet_contacts.at(0);
+  const SheetContacts &laid = was.sheet_contacts.at(0);
+  sheet.disc.clear();
+  sheet.segment.clear();
+  sheet.state.clear();
+  for (std::size_t k = 0; k < laid.size(); ++k)
+    if (const std::uint32_t d = disc_in_to[laid.disc[k]]; d != none)
+      {
+        sheet.disc.push_back(d);
+        sheet.segment.push_back(laid.segment[k]);
+        sheet.state.push_back(laid.state[k]);
+      }
+  sheet.resize_results();
+  s.rebuild_needed = true;
+  to.restore_state(std::move(s));
+}
+} // namespace
+
 PullOutTank cut_pull_out_tank(const PullOutTank &tank, double tank_length, const PullOutTankSpec &region,
                               const Vec2 &origin, const std::string &where)
 {
@@ -77,6 +124,7 @@ PullOutTank cut_pull_out_tank(const PullOutTank &tank, double tank_length, const
   system.walls()[walls.left].translate(Vec2(-left, 0.0));
   system.walls()[walls.base].translate(Vec2(0.0, -below));
   system.add_sheet(sheet);
+  carry_contact_history(tank.tank.system, inside, system);
 
   PullOutTank cut{FilledTank{std::move(system), walls, {}, slot ? t.slot_bottom - y0 : 0.0, slot ? t.slot_top - y0 : 0.0},
                   tank.sheet_level - y0,

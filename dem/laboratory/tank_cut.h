@@ -13,8 +13,8 @@ namespace geohybrid::dem
 {
 /// The grains of `tank` (filled in the tank's frame) whose centres lie inside the rectangle
 /// [origin, origin + (width, height)] of `region` (its resolved filling's width and height, in the
-/// tank's frame), moved into the region's frame, at rest, their contacts to be found again (the
-/// overlaps as they were, the shear history lost); the sheet moved the same way, as it stands
+/// tank's frame), moved into the region's frame, at rest, their contacts with each other and with
+/// the sheet keeping their history (the tangential forces); the sheet moved the same way, as it stands
 /// (its clamp through the front wall's slot, so the region must reach the tank's front wall); the
 /// region's walls: the front wall with the tank's slot, the base and the left wall at the
 /// region's sides or moved out past the grains the cut left standing beyond them (they touch
