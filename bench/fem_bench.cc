@@ -5,8 +5,11 @@
 // under gravity, smooth walls, local damping 0.3, as in a pull-out. The timed steps follow a few
 // untimed ones (caches warm). Runs on the ranks of mpirun.
 //
-// Usage: fem_bench --degree 1|2 --soil elastic|mohr-coulomb --cell-size H [--steps N]
-// Prints one line: key=value pairs (cells, dofs, ranks, steps, seconds, us_per_step_per_cell).
+// Usage: fem_bench --degree 1|2 --soil elastic|mohr-coulomb --cell-size H [--steps N] [--threads T]
+// Prints one line: key=value pairs (cells, dofs, ranks, threads, steps, seconds,
+// ms_per_step, us_per_step_per_cell, and a checksum: the bits of the displacement, the internal
+// force and the material points' stresses after the run, hashed, so that a faster solver can be
+// checked to give the same numbers to the last bit).
 #include "fem/constitutive/soil_model.h"
 #include "fem/explicit_solver.h"
 #include "fem/tank_mesh.h"
@@ -15,16 +18,33 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <iostream>
 #include <string>
 
 using namespace geohybrid::fem;
 
+namespace
+{
+/// FNV-1a over the bits of the doubles: any change in any bit changes it.
+struct BitHash
+{
+  std::uint64_t value = 14695981039346656037ull;
+  void add(double x)
+  {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    for (unsigned int k = 0; k < 8; ++k)
+      value = (value ^ ((bits >> (8 * k)) & 0xffu)) * 1099511628211ull;
+  }
+};
+} // namespace
+
 int main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  unsigned int degree = 1, steps = 200;
+  unsigned int degree = 1, steps = 200, threads = 1;
   std::string soil_name = "elastic";
   double cell_size = 0.0075;
   for (int k = 1; k + 1 < argc; k += 2)
@@ -38,6 +58,8 @@ int main(int argc, char **argv)
         cell_size = std::stod(value);
       else if (key == "--steps")
         steps = static_cast<unsigned int>(std::stoul(value));
+      else if (key == "--threads")
+        threads = static_cast<unsigned int>(std::stoul(value));
       else
         {
           std::cerr << "fem_bench: unknown option " << key << '\n';
@@ -63,6 +85,7 @@ int main(int argc, char **argv)
   settings.density = gamma / g;
   settings.gravity[1] = -g;
   settings.damping.local = 0.3;
+  settings.n_threads = threads;
   ExplicitSolver solver(mesh, model, bc, settings);
   GeostaticStress geostatic;
   geostatic.surface_elevation = height;
@@ -80,11 +103,28 @@ int main(int argc, char **argv)
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const unsigned int ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
   const double out_of_balance = solver.out_of_balance_ratio(); // collective
+  BitHash hash;
+  for (unsigned int i = 0; i < solver.displacement().locally_owned_size(); ++i)
+    {
+      hash.add(solver.displacement().local_element(i));
+      hash.add(solver.internal_force().local_element(i));
+    }
+  solver.material_points().for_each_cell([&](const auto &, auto &points) {
+    for (const auto &p : points)
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = i; j < 3; ++j)
+          {
+            hash.add(p->stress[i][j]);
+            hash.add(p->plastic_strain[i][j]);
+          }
+  });
   if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     std::cout << "degree=Q" << degree << " soil=" << soil_name << " cells=" << mesh.n_global_active_cells()
-              << " dofs=" << solver.space().dof_handler().n_dofs() << " ranks=" << ranks << " steps=" << steps
-              << " time_step_s=" << solver.time_step() << " seconds=" << seconds
+              << " dofs=" << solver.space().dof_handler().n_dofs() << " ranks=" << ranks << " threads=" << threads
+              << " steps=" << steps << " time_step_s=" << solver.time_step() << " seconds=" << seconds
+              << " ms_per_step=" << 1e3 * seconds / steps
               << " us_per_step_per_cell=" << 1e6 * seconds / (steps * mesh.n_global_active_cells())
-              << " out_of_balance=" << out_of_balance << std::endl;
+              << " out_of_balance=" << out_of_balance << " checksum=" << std::hex << hash.value << std::dec
+              << std::endl;
   return 0;
 }
