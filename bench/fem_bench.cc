@@ -6,8 +6,13 @@
 // untimed ones (caches warm). Runs on the ranks of mpirun.
 //
 // Usage: fem_bench --degree 1|2 --soil elastic|mohr-coulomb --cell-size H [--steps N] [--threads T]
+//                  [--gravity-factor F]
+// (--gravity-factor: the solver's gravity is F g while the initial stress is the geostatic one of
+// g: F = 0.2 unloads the soil suddenly, its horizontal stress falls below the active one and the
+// Mohr-Coulomb points take the plastic returns, surface, edges and, near the free surface, the
+// apex: a check of their bits, not a pull-out's cost.)
 // Prints one line: key=value pairs (cells, dofs, ranks, threads, steps, seconds,
-// ms_per_step, us_per_step_per_cell, and a checksum: the bits of the displacement, the internal
+// ms_per_step, us_per_step_per_cell, out_of_balance, plastic_points (on rank 0) and a checksum: the bits of the displacement, the internal
 // force and the material points' stresses after the run, hashed, so that a faster solver can be
 // checked to give the same numbers to the last bit).
 #include "fem/constitutive/soil_model.h"
@@ -46,7 +51,7 @@ int main(int argc, char **argv)
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   unsigned int degree = 1, steps = 200, threads = 1;
   std::string soil_name = "elastic";
-  double cell_size = 0.0075;
+  double cell_size = 0.0075, gravity_factor = 1.0;
   for (int k = 1; k + 1 < argc; k += 2)
     {
       const std::string key = argv[k], value = argv[k + 1];
@@ -58,6 +63,8 @@ int main(int argc, char **argv)
         cell_size = std::stod(value);
       else if (key == "--steps")
         steps = static_cast<unsigned int>(std::stoul(value));
+      else if (key == "--gravity-factor")
+        gravity_factor = std::stod(value);
       else if (key == "--threads")
         threads = static_cast<unsigned int>(std::stoul(value));
       else
@@ -83,7 +90,7 @@ int main(int argc, char **argv)
   ExplicitSettings settings;
   settings.element_degree = degree;
   settings.density = gamma / g;
-  settings.gravity[1] = -g;
+  settings.gravity[1] = -gravity_factor * g;
   settings.damping.local = 0.3;
   settings.n_threads = threads;
   ExplicitSolver solver(mesh, model, bc, settings);
@@ -104,12 +111,18 @@ int main(int argc, char **argv)
   const unsigned int ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
   const double out_of_balance = solver.out_of_balance_ratio(); // collective
   BitHash hash;
+  unsigned int plastic_points = 0; // whose last step was a return
   for (unsigned int i = 0; i < solver.displacement().locally_owned_size(); ++i)
     {
       hash.add(solver.displacement().local_element(i));
       hash.add(solver.internal_force().local_element(i));
     }
   solver.material_points().for_each_cell([&](const auto &, auto &points) {
+    for (const auto &p : points)
+      {
+        plastic_points += p->region != ReturnRegion::elastic;
+        hash.add(static_cast<double>(static_cast<int>(p->region)));
+      }
     for (const auto &p : points)
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int j = i; j < 3; ++j)
@@ -124,7 +137,7 @@ int main(int argc, char **argv)
               << " steps=" << steps << " time_step_s=" << solver.time_step() << " seconds=" << seconds
               << " ms_per_step=" << 1e3 * seconds / steps
               << " us_per_step_per_cell=" << 1e6 * seconds / (steps * mesh.n_global_active_cells())
-              << " out_of_balance=" << out_of_balance << " checksum=" << std::hex << hash.value << std::dec
+              << " out_of_balance=" << out_of_balance << " plastic_points=" << plastic_points << " checksum=" << std::hex << hash.value << std::dec
               << std::endl;
   return 0;
 }
