@@ -72,19 +72,18 @@ StressOnlyUpdate MohrCoulombModel::update(const StressTensor &stress, const Stra
   const auto order = decreasing_order(values);
   const Vector3 sorted_trial({values[order[0]], values[order[1]], values[order[2]]});
 
-  StressOnlyUpdate result;
   // The admissibility test is relative to the stress level so that a point that ended the last
   // step exactly on the surface is not returned again for round-off.
   const double scale = std::abs(sorted_trial[0]) + std::abs(sorted_trial[2]) + compressive_strength_;
   const double f_trial = main_normal_ * sorted_trial - compressive_strength_;
   if (f_trial <= 1e-12 * scale)
     {
-      result.stress = trial;
       if (tangent)
         *tangent = elasticity_.plane_strain_stiffness();
-      result.region = ReturnRegion::elastic;
-      return result;
+      return {trial, {}, ReturnRegion::elastic};
     }
+
+  StressOnlyUpdate result;
 
   const PlaneStrainPrincipalFrame frame = principal_frame(trial);
   const PrincipalReturn principal = return_in_principal_space(sorted_trial, tangent != nullptr);

@@ -13,26 +13,23 @@
 namespace geohybrid::fem
 {
 // The small helpers are inline: the explicit solver calls them at every point every step, and a
-// call into another file (no link-time optimisation) cost more than their few copies.
+// call into another file (no link-time optimisation) cost more than their few copies. They build
+// their tensors from all the components at once (SymmetricTensor's independent components: the
+// diagonal, then xy, xz, yz), not by zeroing one and writing three entries into it, which made
+// the next read of the tensor wait for those writes.
 
 /// The in-plane strain as a 3D strain with eps_zz = eps_xz = eps_yz = 0.
 inline dealii::SymmetricTensor<2, 3> embed_in_3d(const StrainTensor &in_plane)
 {
-  dealii::SymmetricTensor<2, 3> strain;
-  strain[0][0] = in_plane[0][0];
-  strain[1][1] = in_plane[1][1];
-  strain[0][1] = in_plane[0][1];
-  return strain;
+  const double components[6] = {in_plane[0][0], in_plane[1][1], 0.0, in_plane[0][1], 0.0, 0.0};
+  return dealii::SymmetricTensor<2, 3>(components);
 }
 
 /// The xx, yy, xy block of a 3D symmetric tensor.
 inline dealii::SymmetricTensor<2, 2> in_plane_part(const dealii::SymmetricTensor<2, 3> &tensor)
 {
-  dealii::SymmetricTensor<2, 2> part;
-  part[0][0] = tensor[0][0];
-  part[1][1] = tensor[1][1];
-  part[0][1] = tensor[0][1];
-  return part;
+  const double components[3] = {tensor[0][0], tensor[1][1], tensor[0][1]};
+  return dealii::SymmetricTensor<2, 2>(components);
 }
 
 /// The in-plane block C_ijkl, i, j, k, l in {x, y}, of a 3D stiffness: the plane-strain tangent.
