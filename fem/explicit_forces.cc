@@ -102,57 +102,107 @@ void ExplicitSolver::build_cell_cache()
   dealii::FEValues<dim> fe_values(space_.mapping(), fe, space_.cell_quadrature(),
                                   dealii::update_gradients | dealii::update_JxW_values |
                                     (energy_weight_ ? dealii::update_quadrature_points : dealii::update_default));
+  // The step sums a component's DoFs of a cell in the cell's DoF order through their scalar
+  // shapes in increasing order (add_cell_internal_force): the two orders must be the same, as
+  // they are in FESystem's numbering of FE_Q's.
+  for (unsigned int i = 0; i < n_dofs; ++i)
+    for (unsigned int j = i + 1; j < n_dofs; ++j)
+      if (dof_component_[i] == dof_component_[j] && dof_scalar_[i] >= dof_scalar_[j])
+        throw std::logic_error("explicit solver: a component's DoFs out of the order of their shape functions");
   const auto &partitioner = *displacement_.get_partitioner();
   std::vector<dealii::types::global_dof_index> dof_indices(n_dofs);
-  cells_.clear();
+  cells_ = CellCache();
+  cells_.n_dofs = n_dofs;
+  cells_.n_points = n_q;
+  cells_.n_scalar = n_scalar;
   for (const auto &cell : space_.dof_handler().active_cell_iterators())
     if (cell->is_locally_owned())
       {
         fe_values.reinit(cell);
-        CellCache c;
         cell->get_dof_indices(dof_indices);
         for (const auto g : dof_indices)
-          c.local_dofs.push_back(partitioner.global_to_local(g));
+          cells_.local_dofs.push_back(partitioner.global_to_local(g));
         for (const auto &p : material_points_.at(cell))
-          c.points.push_back(p.get());
-        c.gradients.resize(n_q * n_scalar);
+          cells_.points.push_back(p.get());
+        const std::size_t first_gradient = cells_.gradients.size();
+        cells_.gradients.resize(first_gradient + n_q * n_scalar);
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            c.JxW.push_back(fe_values.JxW(q) * energy_weight_at(fe_values, q));
+            cells_.JxW.push_back(fe_values.JxW(q) * energy_weight_at(fe_values, q));
             for (unsigned int i = 0; i < n_dofs; ++i)
-              c.gradients[q * n_scalar + dof_scalar_[i]] = fe_values.shape_grad_component(i, q, dof_component_[i]);
+              cells_.gradients[first_gradient + q * n_scalar + dof_scalar_[i]] =
+                fe_values.shape_grad_component(i, q, dof_component_[i]);
           }
-        cells_.push_back(std::move(c));
       }
   // Colours: greedy in cell order, the lowest colour none of the cell's DoFs has yet (a
   // structured Q1 or Q2 mesh takes 4).
   std::vector<std::uint64_t> dof_colours(partitioner.locally_owned_size() + partitioner.n_ghost_indices(), 0);
   colours_.clear();
-  for (unsigned int k = 0; k < cells_.size(); ++k)
+  for (unsigned int k = 0; k < cells_.n_cells(); ++k)
     {
+      const unsigned int *dofs = &cells_.local_dofs[k * n_dofs];
       std::uint64_t taken = 0;
-      for (const unsigned int i : cells_[k].local_dofs)
-        taken |= dof_colours[i];
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        taken |= dof_colours[dofs[i]];
       unsigned int colour = 0;
       while (colour < 64 && (taken >> colour & 1u))
         ++colour;
       if (colour == 64)
         throw std::logic_error("explicit solver: more than 64 colours of cells (a DoF in more than 64 cells?)");
-      for (const unsigned int i : cells_[k].local_dofs)
-        dof_colours[i] |= std::uint64_t(1) << colour;
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        dof_colours[dofs[i]] |= std::uint64_t(1) << colour;
       if (colour >= colours_.size())
         colours_.resize(colour + 1);
       colours_[colour].push_back(k);
     }
 }
 
+template <unsigned int n_scalar>
+void ExplicitSolver::add_cell_internal_force(unsigned int cell, const Vector &displacement_increment)
+{
+  constexpr unsigned int n_dofs = dim * n_scalar;
+  const unsigned int n_points = cells_.n_points;
+  const unsigned int *local_dofs = &cells_.local_dofs[cell * n_dofs];
+  MaterialPoint *const *points = &cells_.points[cell * n_points];
+  const double *JxW = &cells_.JxW[cell * n_points];
+  // The increment per component and scalar shape: a component's DoFs in the cell's DoF order
+  // (build_cell_cache checks that this is the order of their shapes).
+  double increment[dim][n_scalar];
+  for (unsigned int i = 0; i < n_dofs; ++i)
+    increment[dof_component_[i]][dof_scalar_[i]] = displacement_increment.local_element(local_dofs[i]);
+  dealii::Tensor<1, dim> cell_force[n_scalar]; // per scalar shape, both components
+  for (unsigned int q = 0; q < n_points; ++q)
+    {
+      const dealii::Tensor<1, dim> *gradients = &cells_.gradients[(cell * n_points + q) * n_scalar];
+      // grad du: each entry sums its terms in the cell's DoF order, as it always has (the same
+      // bits), but with the loops' bounds known the entries stay in registers.
+      dealii::Tensor<2, dim> displacement_gradient;
+      for (unsigned int c = 0; c < dim; ++c)
+        for (unsigned int j = 0; j < n_scalar; ++j)
+          for (unsigned int d = 0; d < dim; ++d)
+            displacement_gradient[c][d] += increment[c][j] * gradients[j][d];
+      // Explicit: every step is committed, so the update starts from the last step's stress. No
+      // tangent: nothing here assembles a stiffness.
+      MaterialPoint &point = *points[q];
+      const StressOnlyUpdate update = soil_.update_stress(point.stress, dealii::symmetrize(displacement_gradient));
+      point.stress = point.trial_stress = update.stress;
+      point.plastic_strain += update.plastic_strain_increment;
+      point.trial_plastic_strain = point.plastic_strain;
+      point.region = point.trial_region = update.region;
+      // f_i = int sigma : sym(e_c x grad phi_j) = int (sigma grad phi_j)_c.
+      const dealii::SymmetricTensor<2, dim> in_plane_stress = in_plane_part(update.stress);
+      for (unsigned int j = 0; j < n_scalar; ++j)
+        cell_force[j] += (in_plane_stress * gradients[j]) * JxW[q];
+    }
+  for (unsigned int i = 0; i < n_dofs; ++i)
+    internal_force_.local_element(local_dofs[i]) += cell_force[dof_scalar_[i]][dof_component_[i]];
+}
+
 void ExplicitSolver::assemble_internal_force(const Vector &displacement_increment)
 {
   internal_force_ = 0.0;
-  const unsigned int n_dofs = dof_component_.size();
-  const unsigned int n_scalar = space_.fe().base_element(0).n_dofs_per_cell();
-  constexpr unsigned int max_scalar = 9; // Q2
-  AssertThrow(n_scalar <= max_scalar, dealii::ExcMessage("explicit solver: Q1 or Q2 elements only"));
+  const unsigned int n_scalar = cells_.n_scalar;
+  AssertThrow(n_scalar == 4 || n_scalar == 9, dealii::ExcMessage("explicit solver: Q1 or Q2 elements only"));
   // Colour by colour: a colour's cells share no DoF, so its threads write to distinct entries
   // and each DoF sums its cells in colour order, whatever the number of threads.
   // One parallel region for all colours (waking the threads costs more than a colour's cells
@@ -163,34 +213,10 @@ void ExplicitSolver::assemble_internal_force(const Vector &displacement_incremen
       const auto n_cells = static_cast<std::ptrdiff_t>(colour.size());
 #pragma omp for schedule(static)
       for (std::ptrdiff_t k = 0; k < n_cells; ++k)
-        {
-          const CellCache &c = cells_[colour[k]];
-          double increment[2 * max_scalar];
-          dealii::Tensor<1, dim> cell_force[max_scalar]; // per scalar shape, both components
-          for (unsigned int i = 0; i < n_dofs; ++i)
-            increment[i] = displacement_increment.local_element(c.local_dofs[i]);
-          for (unsigned int q = 0; q < c.points.size(); ++q)
-            {
-              const dealii::Tensor<1, dim> *gradients = &c.gradients[q * n_scalar];
-              dealii::Tensor<2, dim> displacement_gradient;
-              for (unsigned int i = 0; i < n_dofs; ++i)
-                for (unsigned int d = 0; d < dim; ++d)
-                  displacement_gradient[dof_component_[i]][d] += increment[i] * gradients[dof_scalar_[i]][d];
-              // Explicit: every step is committed, so the update starts from the last step's stress.
-              MaterialPoint &point = *c.points[q];
-              const StressUpdate update = soil_.update(point.stress, dealii::symmetrize(displacement_gradient));
-              point.stress = point.trial_stress = update.stress;
-              point.plastic_strain += update.plastic_strain_increment;
-              point.trial_plastic_strain = point.plastic_strain;
-              point.region = point.trial_region = update.region;
-              // f_i = int sigma : sym(e_c x grad phi_j) = int (sigma grad phi_j)_c.
-              const dealii::SymmetricTensor<2, dim> in_plane_stress = in_plane_part(update.stress);
-              for (unsigned int j = 0; j < n_scalar; ++j)
-                cell_force[j] += (in_plane_stress * gradients[j]) * c.JxW[q];
-            }
-          for (unsigned int i = 0; i < n_dofs; ++i)
-            internal_force_.local_element(c.local_dofs[i]) += cell_force[dof_scalar_[i]][dof_component_[i]];
-        }
+        if (n_scalar == 4)
+          add_cell_internal_force<4>(colour[k], displacement_increment);
+        else
+          add_cell_internal_force<9>(colour[k], displacement_increment);
     }
   if (sheet_)
     sheet_->compute_forces(displacement_, material_points_, internal_force_);

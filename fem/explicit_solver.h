@@ -211,15 +211,19 @@ public:
   std::string write_vtu(const std::string &directory, const std::string &basename, unsigned int step);
 
 private:
-  /// What a step needs of each locally owned cell, computed once (the mesh does not move in small
-  /// strain): per quadrature point JxW and the gradients of the scalar shape functions, the cell's
-  /// DoFs as local indices of the ghosted vectors, and its material points.
+  /// What a step needs of the locally owned cells, computed once (the mesh does not move in small
+  /// strain): per quadrature point JxW and the gradients of the scalar shape functions, each
+  /// cell's DoFs as local indices of the ghosted vectors, and its material points. All cells in
+  /// one array each, cell after cell (not a few small arrays per cell): the step reads them in
+  /// order, with no pointer to follow per cell.
   struct CellCache
   {
-    std::vector<unsigned int> local_dofs;          ///< per cell DoF
-    std::vector<MaterialPoint *> points;           ///< per quadrature point
-    std::vector<double> JxW;                       ///< per quadrature point
-    std::vector<dealii::Tensor<1, dim>> gradients; ///< [q * n_scalar + j]
+    unsigned int n_dofs = 0, n_points = 0, n_scalar = 0; ///< per cell
+    std::vector<unsigned int> local_dofs;          ///< [cell * n_dofs + i]
+    std::vector<MaterialPoint *> points;           ///< [cell * n_points + q]
+    std::vector<double> JxW;                       ///< [cell * n_points + q]
+    std::vector<dealii::Tensor<1, dim>> gradients; ///< [(cell * n_points + q) * n_scalar + j]
+    unsigned int n_cells() const { return n_dofs == 0 ? 0 : local_dofs.size() / n_dofs; }
   };
   /// What the steps need from the mesh, the soil and the energy weights: the lumped mass and body
   /// force, the cell cache, the stable step (refusing a user step above it, naming `where` and
@@ -232,6 +236,10 @@ private:
   void assemble_mass_and_body_force();
   /// f_int from the displacement increment du (ghosted), updating and committing the points.
   void assemble_internal_force(const Vector &displacement_increment);
+  /// That for cell `cell` of cells_, with n_scalar scalar shape functions (4 for Q1, 9 for Q2:
+  /// a constant, so that the compiler keeps the cell's arrays in registers).
+  template <unsigned int n_scalar>
+  void add_cell_internal_force(unsigned int cell, const Vector &displacement_increment);
   void assemble_external_force(double time);
   /// The prescribed displacements at `time`, on the locally owned constrained DoFs.
   std::map<dealii::types::global_dof_index, double> prescribed_displacements(double time) const;
@@ -264,7 +272,7 @@ private:
   double previous_step_ = 0.0; ///< dt_{n-1/2}, 0 before the first step
   unsigned int n_steps_ = 0;
   std::unique_ptr<EmbeddedSheet> sheet_;
-  std::vector<CellCache> cells_;
+  CellCache cells_;
   /// cells_ by colour: no two cells of a colour share a DoF (build_cell_cache, greedy in cell order).
   std::vector<std::vector<unsigned int>> colours_;
   std::vector<unsigned int> dof_component_, dof_scalar_; ///< of each cell DoF: its component and scalar shape

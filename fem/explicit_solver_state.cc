@@ -46,16 +46,15 @@ ExplicitSolverState ExplicitSolver::export_state() const
   s.internal_force = owned(internal_force_);
   s.external_force = owned(external_force_);
   s.added_force = owned(added_force_);
-  for (const CellCache &c : cells_)
-    for (const MaterialPoint *p : c.points)
-      {
-        put_symmetric(s.material_points, p->stress);
-        put_symmetric(s.material_points, p->plastic_strain);
-        put_symmetric(s.material_points, p->trial_stress);
-        put_symmetric(s.material_points, p->trial_plastic_strain);
-        s.material_points.push_back(static_cast<double>(static_cast<int>(p->region)));
-        s.material_points.push_back(static_cast<double>(static_cast<int>(p->trial_region)));
-      }
+  for (const MaterialPoint *p : cells_.points)
+    {
+      put_symmetric(s.material_points, p->stress);
+      put_symmetric(s.material_points, p->plastic_strain);
+      put_symmetric(s.material_points, p->trial_stress);
+      put_symmetric(s.material_points, p->trial_plastic_strain);
+      s.material_points.push_back(static_cast<double>(static_cast<int>(p->region)));
+      s.material_points.push_back(static_cast<double>(static_cast<int>(p->trial_region)));
+    }
   s.ledger = ledger_;
   s.has_sheet = sheet_ != nullptr;
   if (sheet_)
@@ -66,9 +65,7 @@ ExplicitSolverState ExplicitSolver::export_state() const
 void ExplicitSolver::restore_state(const ExplicitSolverState &s)
 {
   const unsigned int n = velocity_.locally_owned_size();
-  std::size_t n_points = 0;
-  for (const CellCache &c : cells_)
-    n_points += c.points.size();
+  const std::size_t n_points = cells_.points.size();
   for (const std::vector<double> *v : {&s.velocity, &s.displacement, &s.internal_force, &s.external_force, &s.added_force})
     if (v->size() != n)
       throw std::invalid_argument("explicit solver: a saved state of " + std::to_string(v->size()) +
@@ -97,16 +94,15 @@ void ExplicitSolver::restore_state(const ExplicitSolverState &s)
   restore(s.added_force, added_force_);
   displacement_.update_ghost_values();
   const double *in = s.material_points.data();
-  for (CellCache &c : cells_)
-    for (MaterialPoint *p : c.points)
-      {
-        p->stress = get_symmetric(in);
-        p->plastic_strain = get_symmetric(in);
-        p->trial_stress = get_symmetric(in);
-        p->trial_plastic_strain = get_symmetric(in);
-        p->region = static_cast<ReturnRegion>(static_cast<int>(*in++));
-        p->trial_region = static_cast<ReturnRegion>(static_cast<int>(*in++));
-      }
+  for (MaterialPoint *p : cells_.points)
+    {
+      p->stress = get_symmetric(in);
+      p->plastic_strain = get_symmetric(in);
+      p->trial_stress = get_symmetric(in);
+      p->trial_plastic_strain = get_symmetric(in);
+      p->region = static_cast<ReturnRegion>(static_cast<int>(*in++));
+      p->trial_region = static_cast<ReturnRegion>(static_cast<int>(*in++));
+    }
   ledger_ = s.ledger;
   if (sheet_)
     sheet_->restore_state(s.sheet);

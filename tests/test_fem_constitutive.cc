@@ -1,6 +1,7 @@
 // The soil models of fem/constitutive against closed forms: Hooke's law, the Mohr-Coulomb limit
 // of a plane-strain biaxial test, the dilatancy of plastic flow, the apex in tension, the
-// consistent tangents against finite differences in every return region, and bad parameters.
+// consistent tangents against finite differences in every return region, the explicit solver's
+// update without the tangent against the full one (bit for bit), and bad parameters.
 #include "fem/constitutive/biaxial_path.h"
 #include "fem/constitutive/plane_strain_tensors.h"
 #include "fem/constitutive/soil_model.h"
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <iostream>
 #include <random>
 #include <utility>
@@ -290,6 +292,48 @@ TEST(MohrCoulomb, RandomTrialStatesReturnConsistently)
   // The sampling must reach every region, or the checks above prove little.
   for (unsigned int region = 0; region < 5; ++region)
     EXPECT_GT(count[region], 20u) << to_string(static_cast<ReturnRegion>(region));
+}
+
+// The explicit solver's update_stress skips the tangent: its stress, plastic strain increment and
+// region must be the full update's to the last bit (the explicit run's results must not move), in
+// every return region of every model.
+TEST(SoilModel, UpdateWithoutTangentIsTheFullUpdateBitForBit)
+{
+  const auto same_bits = [](const dealii::SymmetricTensor<2, 3> &a, const dealii::SymmetricTensor<2, 3> &b) {
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = i; j < 3; ++j)
+        {
+          const double x = a[i][j], y = b[i][j];
+          if (std::memcmp(&x, &y, sizeof(double)) != 0)
+            return false;
+        }
+    return true;
+  };
+  for (const SoilModelKind kind : {SoilModelKind::mohr_coulomb, SoilModelKind::drucker_prager, SoilModelKind::linear_elastic})
+    {
+      SCOPED_TRACE(to_string(kind));
+      const SoilModel model(sand(kind, 32.0, 8e3, 12.0));
+      std::mt19937 random(777);
+      std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+      unsigned int count[5] = {0, 0, 0, 0, 0};
+      for (unsigned int n = 0; n < 20000; ++n)
+        {
+          const StressTensor start = plane_strain_stress(-100e3 + 50e3 * uniform(random), -100e3 + 50e3 * uniform(random),
+                                                         20e3 * uniform(random), -100e3 + 50e3 * uniform(random));
+          const StrainTensor increment = strain(8e-3 * uniform(random), 8e-3 * uniform(random), 4e-3 * uniform(random));
+          const StressUpdate full = model.update(start, increment);
+          const StressOnlyUpdate fast = model.update_stress(start, increment);
+          ++count[static_cast<int>(full.region)];
+          ASSERT_EQ(fast.region, full.region) << "sample " << n;
+          ASSERT_TRUE(same_bits(fast.stress, full.stress)) << "sample " << n << ", " << to_string(full.region);
+          ASSERT_TRUE(same_bits(fast.plastic_strain_increment, full.plastic_strain_increment))
+            << "sample " << n << ", " << to_string(full.region);
+        }
+      // Mohr-Coulomb's sampling reaches all of its regions (RandomTrialStatesReturnConsistently).
+      if (kind == SoilModelKind::mohr_coulomb)
+        for (unsigned int region = 0; region < 5; ++region)
+          EXPECT_GT(count[region], 20u) << to_string(static_cast<ReturnRegion>(region));
+    }
 }
 
 // Drucker-Prager matched in plane strain: once sigma_zz has settled (no plastic eps_zz), the

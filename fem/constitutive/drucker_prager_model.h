@@ -34,6 +34,12 @@ public:
                      const std::string &where = "Drucker-Prager soil");
 
   StressUpdate update(const StressTensor &stress, const StrainTensor &strain_increment) const;
+  /// update() without its tangent (computed and dropped: no explicit run uses this model's speed).
+  StressOnlyUpdate update_stress(const StressTensor &stress, const StrainTensor &strain_increment) const
+  {
+    const StressUpdate full = update(stress, strain_increment);
+    return {full.stress, full.plastic_strain_increment, full.region};
+  }
 
   /// f = sqrt(J2) + alpha I1 - kappa [Pa]: <= 0 inside the cone.
   double yield_function(const StressTensor &stress) const;

@@ -19,6 +19,12 @@ public:
     result.tangent = elasticity_.plane_strain_stiffness();
     return result;
   }
+  StressOnlyUpdate update_stress(const StressTensor &stress, const StrainTensor &strain_increment) const
+  {
+    StressOnlyUpdate result;
+    result.stress = stress + elasticity_.stress(embed_in_3d(strain_increment));
+    return result;
+  }
 
   /// Never yields: the yield function is -infinity in spirit; -1 keeps arithmetic finite.
   double yield_function(const StressTensor &) const { return -1.0; }

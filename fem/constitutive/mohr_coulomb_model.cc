@@ -53,6 +53,17 @@ double MohrCoulombModel::yield_function(const StressTensor &stress) const
 StressUpdate MohrCoulombModel::update(const StressTensor &stress,
                                       const StrainTensor &strain_increment) const
 {
+  StressUpdate result;
+  const StressOnlyUpdate update_without_tangent = update(stress, strain_increment, &result.tangent);
+  result.stress = update_without_tangent.stress;
+  result.plastic_strain_increment = update_without_tangent.plastic_strain_increment;
+  result.region = update_without_tangent.region;
+  return result;
+}
+
+StressOnlyUpdate MohrCoulombModel::update(const StressTensor &stress, const StrainTensor &strain_increment,
+                                          TangentTensor *tangent) const
+{
   const auto strain_3d = embed_in_3d(strain_increment);
   const StressTensor trial = stress + elasticity_.stress(strain_3d);
   // The principal directions (atan2, sin, cos) only once the point yields: most points of a
@@ -61,39 +72,40 @@ StressUpdate MohrCoulombModel::update(const StressTensor &stress,
   const auto order = decreasing_order(values);
   const Vector3 sorted_trial({values[order[0]], values[order[1]], values[order[2]]});
 
-  StressUpdate result;
   // The admissibility test is relative to the stress level so that a point that ended the last
   // step exactly on the surface is not returned again for round-off.
   const double scale = std::abs(sorted_trial[0]) + std::abs(sorted_trial[2]) + compressive_strength_;
   const double f_trial = main_normal_ * sorted_trial - compressive_strength_;
   if (f_trial <= 1e-12 * scale)
     {
-      result.stress = trial;
-      result.tangent = elasticity_.plane_strain_stiffness();
-      result.region = ReturnRegion::elastic;
-      return result;
+      if (tangent)
+        *tangent = elasticity_.plane_strain_stiffness();
+      return {trial, {}, ReturnRegion::elastic};
     }
 
+  StressOnlyUpdate result;
+
   const PlaneStrainPrincipalFrame frame = principal_frame(trial);
-  const PrincipalReturn principal = return_in_principal_space(sorted_trial);
+  const PrincipalReturn principal = return_in_principal_space(sorted_trial, tangent != nullptr);
   std::array<double, 3> returned_values;
-  dealii::Tensor<2, 3> tangent_in_frame;
   for (unsigned int i = 0; i < 3; ++i)
-    {
-      returned_values[order[i]] = principal.stress[i];
-      for (unsigned int j = 0; j < 3; ++j)
-        tangent_in_frame[order[i]][order[j]] = principal.tangent[i][j];
-    }
+    returned_values[order[i]] = principal.stress[i];
   result.stress = stress_from_principal(frame, returned_values);
-  result.tangent = tangent_from_principal(frame, returned_values, tangent_in_frame,
-                                          elasticity_.shear_modulus());
+  if (tangent)
+    {
+      dealii::Tensor<2, 3> tangent_in_frame;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          tangent_in_frame[order[i]][order[j]] = principal.tangent[i][j];
+      *tangent = tangent_from_principal(frame, returned_values, tangent_in_frame, elasticity_.shear_modulus());
+    }
   result.region = principal.region;
   result.plastic_strain_increment = strain_3d - elasticity_.strain(result.stress - stress);
   return result;
 }
 
 MohrCoulombModel::PrincipalReturn
-MohrCoulombModel::return_in_principal_space(const Vector3 &trial) const
+MohrCoulombModel::return_in_principal_space(const Vector3 &trial, bool with_tangent) const
 {
   const double tolerance =
     1e-12 * (std::abs(trial[0]) + std::abs(trial[2]) + compressive_strength_ + std::abs(apex_stress_));
@@ -101,7 +113,6 @@ MohrCoulombModel::return_in_principal_space(const Vector3 &trial) const
 
   // Main plane: sigma = sigma_trial - dlambda D b with a . sigma = sigma_c.
   const Vector3 corrector = D * main_flow_;
-  const Vector3 normal_image = D * main_normal_;
   const double f_trial = main_normal_ * trial - compressive_strength_;
   const double stiffness = main_normal_ * corrector;
   PrincipalReturn result;
@@ -110,7 +121,8 @@ MohrCoulombModel::return_in_principal_space(const Vector3 &trial) const
   const bool crossed_extension_edge = result.stress[1] < result.stress[2] - tolerance;
   if (!crossed_compression_edge && !crossed_extension_edge)
     {
-      result.tangent = D - dealii::outer_product(corrector, normal_image) / stiffness;
+      if (with_tangent)
+        result.tangent = D - dealii::outer_product(corrector, D * main_normal_) / stiffness;
       result.region = ReturnRegion::surface;
       return result;
     }
@@ -121,7 +133,8 @@ MohrCoulombModel::return_in_principal_space(const Vector3 &trial) const
                                                         ReturnRegion::edge_triaxial_extension;
   const ReturnRegion second = crossed_compression_edge ? ReturnRegion::edge_triaxial_extension :
                                                          ReturnRegion::edge_triaxial_compression;
-  if (return_to_edge(trial, first, tolerance, result) || return_to_edge(trial, second, tolerance, result))
+  if (return_to_edge(trial, first, tolerance, with_tangent, result) ||
+      return_to_edge(trial, second, tolerance, with_tangent, result))
     return result;
 
   result.stress = Vector3({apex_stress_, apex_stress_, apex_stress_});
@@ -131,7 +144,7 @@ MohrCoulombModel::return_in_principal_space(const Vector3 &trial) const
 }
 
 bool MohrCoulombModel::return_to_edge(const Vector3 &trial, ReturnRegion edge, double tolerance,
-                                      PrincipalReturn &result) const
+                                      bool with_tangent, PrincipalReturn &result) const
 {
   const double k = main_normal_[0], m = main_flow_[0];
   // The second active plane and its potential: k sigma_2 - sigma_3 = sigma_c on the compression
@@ -141,7 +154,6 @@ bool MohrCoulombModel::return_to_edge(const Vector3 &trial, ReturnRegion edge, d
   const Vector3 flows[2] = {main_flow_, compression ? Vector3({0.0, m, -1.0}) : Vector3({m, -1.0, 0.0})};
   const Matrix3 &D = elastic_principal_;
   const Vector3 correctors[2] = {D * flows[0], D * flows[1]};
-  const Vector3 normal_images[2] = {D * normals[0], D * normals[1]};
 
   // Both planes satisfied: sum_j (a_i . D b_j) dlambda_j = f_i(sigma_trial), a 2x2 system.
   double H[2][2], f[2];
@@ -167,11 +179,14 @@ bool MohrCoulombModel::return_to_edge(const Vector3 &trial, ReturnRegion edge, d
     return false;
 
   result.stress = stress;
+  result.region = edge;
+  if (!with_tangent)
+    return true;
+  const Vector3 normal_images[2] = {D * normals[0], D * normals[1]};
   result.tangent = D;
   for (unsigned int i = 0; i < 2; ++i)
     for (unsigned int j = 0; j < 2; ++j)
       result.tangent -= H_inverse[i][j] * dealii::outer_product(correctors[i], normal_images[j]);
-  result.region = edge;
   return true;
 }
 } // namespace geohybrid::fem

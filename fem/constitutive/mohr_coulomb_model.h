@@ -35,6 +35,13 @@ public:
 
   /// Stress after the in-plane strain increment `strain_increment` from the converged `stress`.
   StressUpdate update(const StressTensor &stress, const StrainTensor &strain_increment) const;
+  /// The same without the tangent (the explicit solver's, at every point every step): the same
+  /// stress, plastic strain and region, bit for bit, for less work on the plastic points (no
+  /// tangent in principal space, no rotation of it) and a smaller result on all.
+  StressOnlyUpdate update_stress(const StressTensor &stress, const StrainTensor &strain_increment) const
+  {
+    return update(stress, strain_increment, nullptr);
+  }
 
   /// f = k sigma_1 - sigma_3 - sigma_c [Pa]: <= 0 inside the yield surface.
   double yield_function(const StressTensor &stress) const;
@@ -49,16 +56,21 @@ private:
   using Vector3 = dealii::Tensor<1, 3>;
   using Matrix3 = dealii::Tensor<2, 3>;
 
+  /// Both updates: the tangent goes to `tangent` unless it is nullptr (then it is not computed;
+  /// nothing of the stress depends on it).
+  StressOnlyUpdate update(const StressTensor &stress, const StrainTensor &strain_increment,
+                          TangentTensor *tangent) const;
+
   /// The return of a trial stress given by its sorted principal values, with d(sigma)/d(eps_trial)
-  /// in the same sorted principal space.
+  /// in the same sorted principal space if `with_tangent` (left zero otherwise).
   struct PrincipalReturn
   {
     Vector3 stress;
     Matrix3 tangent;
     ReturnRegion region;
   };
-  PrincipalReturn return_in_principal_space(const Vector3 &trial) const;
-  bool return_to_edge(const Vector3 &trial, ReturnRegion edge, double tolerance,
+  PrincipalReturn return_in_principal_space(const Vector3 &trial, bool with_tangent) const;
+  bool return_to_edge(const Vector3 &trial, ReturnRegion edge, double tolerance, bool with_tangent,
                       PrincipalReturn &result) const;
 
   IsotropicElasticity elasticity_;

@@ -4,24 +4,6 @@
 
 namespace geohybrid::fem
 {
-dealii::SymmetricTensor<2, 3> embed_in_3d(const StrainTensor &in_plane)
-{
-  dealii::SymmetricTensor<2, 3> strain;
-  strain[0][0] = in_plane[0][0];
-  strain[1][1] = in_plane[1][1];
-  strain[0][1] = in_plane[0][1];
-  return strain;
-}
-
-dealii::SymmetricTensor<2, 2> in_plane_part(const dealii::SymmetricTensor<2, 3> &tensor)
-{
-  dealii::SymmetricTensor<2, 2> part;
-  part[0][0] = tensor[0][0];
-  part[1][1] = tensor[1][1];
-  part[0][1] = tensor[0][1];
-  return part;
-}
-
 TangentTensor in_plane_part(const dealii::SymmetricTensor<4, 3> &stiffness)
 {
   TangentTensor part;
@@ -31,18 +13,6 @@ TangentTensor in_plane_part(const dealii::SymmetricTensor<4, 3> &stiffness)
         for (unsigned int l = k; l < 2; ++l)
           part[i][j][k][l] = stiffness[i][j][k][l];
   return part;
-}
-
-std::array<double, 3> principal_values(const StressTensor &stress)
-{
-  // Mohr's circle of the in-plane block: centre and radius.
-  const double centre = 0.5 * (stress[0][0] + stress[1][1]);
-  const double half_difference = 0.5 * (stress[0][0] - stress[1][1]);
-  // sqrt, not hypot: stresses are far from overflow (|sigma| < 1e150 Pa), and glibc's hypot was
-  // a tenth of a hybrid pull-out's time (perf), the explicit solver calling this at every point
-  // every step.
-  const double radius = std::sqrt(half_difference * half_difference + stress[0][1] * stress[0][1]);
-  return {{centre + radius, centre - radius, stress[2][2]}};
 }
 
 PlaneStrainPrincipalFrame principal_frame(const StressTensor &stress)

@@ -42,6 +42,11 @@ public:
   {
     return std::visit([&](const auto &law) { return law.update(stress, strain_increment); }, law_);
   }
+  /// update() without the tangent, for the explicit solver: the same stress, bit for bit.
+  StressOnlyUpdate update_stress(const StressTensor &stress, const StrainTensor &strain_increment) const
+  {
+    return std::visit([&](const auto &law) { return law.update_stress(stress, strain_increment); }, law_);
+  }
   double yield_function(const StressTensor &stress) const
   {
     return std::visit([&](const auto &law) { return law.yield_function(stress); }, law_);

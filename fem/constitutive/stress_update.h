@@ -26,6 +26,16 @@ struct StressUpdate
   ReturnRegion region = ReturnRegion::elastic;
 };
 
+/// A stress update without the tangent: what the explicit solver needs (it assembles no
+/// stiffness). Its stress, plastic strain increment and region are those of the full update to
+/// the last bit (the same arithmetic, the tangent's left out).
+struct StressOnlyUpdate
+{
+  StressTensor stress;                                    ///< sigma_{n+1}, with sigma_zz [Pa]
+  dealii::SymmetricTensor<2, 3> plastic_strain_increment; ///< delta eps^p, with its zz part [-]
+  ReturnRegion region = ReturnRegion::elastic;
+};
+
 inline const char *to_string(ReturnRegion region)
 {
   switch (region)
