@@ -12,6 +12,8 @@
 //   mobilised_friction              sum |Ft| / (tan(delta) sum Fn): 1 where every contact slips
 //   soil_kinetic_energy_J_per_m, local_damping_dissipated_J_per_m, friction_dissipated_J_per_m,
 //   clamp_work_J_per_m              (the energy terms since the start of the pull)
+// In hybrid mode the grains and the sheet are the particle box's, the energy terms theirs (the
+// continuum's and the coupling's work: coupling_diagnostics.csv).
 #include "dem/dem_system.h"
 #include "dem/io/checkpoint.h"
 #include "dem/laboratory/pullout_tank.h"

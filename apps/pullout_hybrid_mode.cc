@@ -5,6 +5,7 @@
 #include "apps/interrupt.h"
 #include "apps/pullout_fem_mode.h"
 #include "apps/parameters_hash.h"
+#include "apps/pullout_forces_output.h"
 #include "apps/pullout_output.h"
 #include "apps/pull_watch.h"
 #include "apps/resume_check.h"
@@ -355,6 +356,13 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
     }
   else
     output.emplace(out, g.sheet_width, in.profiles_at);
+  // pullout_forces.csv as in dem mode: the sheet's normal force and mobilised friction along the
+  // pull, the figures that tell where the hybrid's tension differs from pure DEM's.
+  std::optional<PullForcesOutput> forces;
+  if (resumed && saved.reals.count("forces_rows") != 0)
+    forces.emplace(out, mu, saved);
+  else // a new pull, or a checkpoint of a version that did not record the decomposition
+    forces.emplace(out, mu, system.energy());
   const double u_first = pull->head_displacement();
   // Where the pull's time goes (issue 26, part 1): the coupled steps' parts, and the pull's wall
   // time, carried through checkpoints so that a resumed run reports the whole pull's.
@@ -379,6 +387,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   const auto record = [&](const dem::PullPoint &p) {
     watch.check(p, system);
     add_dem_sheet_point(*output, tank, system.sheets()[0], p, dem::Vec2(box.x0, box.y0));
+    forces->add_point(p, system);
     diagnostics.add(p, *hybrid);
     progress.update(p.head_displacement - u_first);
   };
@@ -396,6 +405,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
     c.reals["pull_wall_time_s"] = {pull_time()};
     dem::store_pull_progress(pull->progress(), c);
     output->store(c);
+    forces->store(c);
     diagnostics.store(c);
     watch.store(c);
     coupling::store_continuum_state(hybrid->continuum_state(), c);
@@ -414,6 +424,7 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
 
   // 3. The plot, then summary.json last.
   output->finish("hybrid DEM-FEM", in.references, in.pull.final_displacement);
+  forces->finish();
   if (checkpoint_interval > 0.0)
     save_checkpoint(); // the finished pull: a later --resume has nothing left to do but the files
   const double T_max = output->max_head_tension(), wall_time = earlier_wall_time + seconds();

@@ -162,7 +162,8 @@ TEST(PullOutInterrupted, HybridSigtermKeepsTheRowsAndResumesBitForBit)
     EXPECT_EQ(kept[k], expected[k]) << "line " << k;
 
   ASSERT_EQ(run_geohybrid({"pullout", stopped, "--resume"}, d / "resumed.log"), 0) << read_text(d / "resumed.log");
-  for (const char *file : {"pullout_curve.csv", "sheet_displacements.csv", "sheet_tension.csv", "coupling_diagnostics.csv"})
+  for (const char *file :
+       {"pullout_curve.csv", "pullout_forces.csv", "sheet_displacements.csv", "sheet_tension.csv", "coupling_diagnostics.csv"})
     EXPECT_TRUE(read_text(d / "stopped" / "out" / file) == read_text(d / "straight" / "out" / file)) << file;
   EXPECT_EQ(summary_text(d / "stopped" / "out" / "summary.json", "T_max_kN_per_m"),
             summary_text(d / "straight" / "out" / "summary.json", "T_max_kN_per_m"));

@@ -181,8 +181,8 @@ TEST(PullOutHybridMode, ResumesAStoppedPullBitForBit)
   EXPECT_FALSE(fs::exists(d / "stopped" / "summary.json"));
   ASSERT_EQ(run_pullout_command(stopped, true), 0);
 
-  for (const char *file : {"pullout_curve.csv", "pullout_curve_sheet.csv", "sheet_displacements.csv", "sheet_tension.csv",
-                           "coupling_diagnostics.csv"})
+  for (const char *file : {"pullout_curve.csv", "pullout_curve_sheet.csv", "pullout_forces.csv", "sheet_displacements.csv",
+                           "sheet_tension.csv", "coupling_diagnostics.csv"})
     {
       const std::string expected = read_text(d / "straight" / file);
       EXPECT_GT(expected.size(), 50u) << file;
