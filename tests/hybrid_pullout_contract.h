@@ -4,6 +4,7 @@
 // serves it and the SIGTERM test's straight run (test_app_interrupt.cc): the same input, so the
 // contract costs no run of its own.
 #include "apps/pullout_command.h"
+#include "pullout_forces_check.h"
 #include "text_file.h"
 
 #include <gtest/gtest.h>
@@ -40,30 +41,7 @@ inline void expect_hybrid_pullout_contract(const std::filesystem::path &out, con
   EXPECT_GT(profiles.size(), 2u * 25u); // two profiles of a row per segment (0.25 m of 1 cm segments)
   EXPECT_TRUE(fs::exists(out / "pullout_curve.png"));
   EXPECT_TRUE(fs::exists(out / "parameters.prm"));
-  // Where the head tension comes from, as in dem mode (test_app_pullout.cc): per row the five
-  // parts sum to the curve's head tension, no contact is past its Coulomb limit, the sheet is
-  // pressed, and the clamp's booked work is the curve's integral of T du from the first point on.
-  ASSERT_EQ(lines_of(out / "pullout_forces.csv")[0].substr(0, 62),
-            "head_displacement_m,head_tension_kN_per_m,interface_friction_k");
-  const std::vector<std::vector<double>> forces = numbers_of(out / "pullout_forces.csv"),
-                                         points = numbers_of(out / "pullout_curve.csv");
-  ASSERT_EQ(forces.size(), points.size());
-  double integral = 0.0;
-  for (std::size_t r = 0; r < forces.size(); ++r)
-    {
-      const std::vector<double> &f = forces[r], &c = points[r];
-      ASSERT_EQ(f.size(), 13u);
-      EXPECT_NEAR(f[1], c[1], 1e-9 * std::abs(c[1]) + 1e-12) << r;
-      EXPECT_NEAR(f[2] + f[3] + f[4] + f[5] + f[6], f[1], 1e-9 * std::abs(f[1]) + 1e-12) << r;
-      EXPECT_GT(f[7], 0.0) << r;
-      EXPECT_GE(f[8], 0.0);
-      EXPECT_LE(f[8], 1.0 + 1e-9) << r;
-      if (r > 1)
-        integral += 1e3 * c[1] * (c[0] - points[r - 1][0]);
-    }
-  const double clamp_work = forces.back()[12] - forces[1][12];
-  EXPECT_GT(clamp_work, 0.0);
-  EXPECT_NEAR(clamp_work, integral, 0.02 * integral);
+  expect_pullout_forces_add_up(out); // as in dem mode (test_app_pullout.cc)
   // The coupling's diagnostics at each point of the curve.
   const std::vector<std::string> diagnostics = lines_of(out / "coupling_diagnostics.csv");
   ASSERT_EQ(diagnostics.size(), curve.size());

@@ -6,6 +6,7 @@
 #include "apps/pullout_command.h"
 #include "apps/pullout_output.h"
 #include "apps/pullout_seeds.h"
+#include "pullout_forces_check.h"
 #include "temporary_directory.h"
 #include "text_file.h"
 #include "tiny_pullout_input.h"
@@ -107,31 +108,7 @@ TEST(PullOutCommand, WritesTheContract)
   EXPECT_NE(summary.str().find("\"n_particles\": 400"), std::string::npos) << summary.str();
   EXPECT_TRUE(fs::exists(out / "parameters.prm"));
 
-  // Where the head tension comes from: per row, the five parts (each a mean over the steps of
-  // the curve's point) sum to its head tension, which is the curve's; no contact carries more
-  // than its Coulomb limit; and the clamp's booked work is the curve's integral of T du. Both
-  // are taken from the first point on: a point is the mean over equal steps, which is the mean
-  // over the displacement only at a constant speed (the first interval holds the ramp).
-  ASSERT_EQ(lines_of(out / "pullout_forces.csv")[0].substr(0, 62),
-            "head_displacement_m,head_tension_kN_per_m,interface_friction_k");
-  const std::vector<std::vector<double>> forces = numbers_of(out / "pullout_forces.csv"),
-                                         points = numbers_of(out / "pullout_curve.csv");
-  ASSERT_EQ(forces.size(), points.size());
-  double integral = 0.0;
-  for (std::size_t r = 0; r < forces.size(); ++r)
-    {
-      const std::vector<double> &f = forces[r], &c = points[r];
-      ASSERT_EQ(f.size(), 13u);
-      EXPECT_NEAR(f[1], c[1], 1e-9 * std::abs(c[1]) + 1e-12) << r;
-      EXPECT_NEAR(f[2] + f[3] + f[4] + f[5] + f[6], f[1], 1e-9 * std::abs(f[1]) + 1e-12) << r;
-      EXPECT_GE(f[8], 0.0);
-      EXPECT_LE(f[8], 1.0 + 1e-9) << r;
-      if (r > 1)
-        integral += 1e3 * c[1] * (c[0] - points[r - 1][0]);
-    }
-  const double clamp_work = forces.back()[12] - forces[1][12];
-  EXPECT_GT(clamp_work, 0.0);
-  EXPECT_NEAR(clamp_work, integral, 0.02 * integral);
+  geohybrid::testing::expect_pullout_forces_add_up(out);
   fs::remove_all(d);
 }
 
