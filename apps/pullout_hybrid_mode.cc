@@ -225,7 +225,8 @@ int run_pullout_hybrid_mode(ParameterHandler &prm, const PullOutInput &in, const
   write_resolved_parameters(prm, out);
   std::cout << "geohybrid pullout: " << anchorage_description(g) << "; mode hybrid: " << box.n_particles << " particles in the box [" << number(box.x0, 4) << ", "
             << number(box.x1, 4) << "] x [" << number(box.y0, 4) << ", " << number(box.y1, 4) << "] m in "
-            << box.n_lifts << " lifts of " << number(box.lift_thickness, 4) << " m ("
+            << box.n_lifts << " lifts of " << (box.box_tank.filling.layer_tops.empty() ? "" : "at least ")
+            << number(box.lift_thickness, 4) << " m ("
             << in.tank.filling.n_particles << " for the whole tank), " << fem::to_string(spec.continuum.soil.kind)
             << " continuum, coupling " << coupling::name_of(spec.region.method) << std::endl;
 

@@ -18,9 +18,12 @@ namespace
 /// from the sheet (their sum, kept as the given rule computes it so that its box is as before).
 struct Lifts
 {
-  double thickness = 0.0;
+  double thickness = 0.0; ///< the thinnest, with `tops`
   std::size_t n_below = 0;
   double below = 0.0;
+  /// Lifts of their own thickness in each part of the box (lifts_by_part): their tops above the
+  /// box's bottom, bottom first. Empty: lifts of `thickness` all the way up.
+  std::vector<double> tops;
 };
 
 /// The given rule: the margin below the sheet (or the whole soil below it) divided evenly into
@@ -29,7 +32,7 @@ Lifts lifts_at_most(const HybridPullOutSpec &spec, double at_most)
 {
   const double below = std::min(spec.region.margin, spec.tank.geometry.sheet_level());
   const auto n = static_cast<std::size_t>(std::max(1.0, std::ceil(below / at_most - 1e-9)));
-  return {below / static_cast<double>(n), n, below};
+  return {below / static_cast<double>(n), n, below, {}};
 }
 
 /// The box cut into `lifts` below the sheet and as many of the same above as reach the margin
@@ -55,6 +58,11 @@ ParticleBox box_in_lifts(const HybridPullOutSpec &spec, const Lifts &lifts, cons
   if (static_cast<double>(lifts_above) >= room - 1e-6)
     lifts_above = static_cast<std::size_t>(std::floor(room + 1e-6));
   box.y1 = sheet_level + static_cast<double>(lifts_above) * lift;
+  if (!lifts.tops.empty())
+    {
+      lifts_above = lifts.tops.size() - lifts.n_below;
+      box.y1 = std::min(box.y0 + lifts.tops.back(), g.fill_height);
+    }
   box.top_shared = box.y1 < g.fill_height - 1e-9;
   if (box.y1 - (sheet_level + rise) < 0.5 * margin && box.top_shared)
     throw std::invalid_argument(where + ": parameter 'Hybrid/DEM region margin' = " + std::to_string(margin) +
@@ -91,6 +99,7 @@ ParticleBox box_in_lifts(const HybridPullOutSpec &spec, const Lifts &lifts, cons
       t.geometry.anchorage_length = t.geometry.tank_length - 2.0 * spec.tank.sheet.thickness;
     }
   t.filling.n_layers = box.n_lifts;
+  t.filling.layer_tops = lifts.tops;
   t.filling.n_particles = box.n_particles;
   // A shared top is not the soil's surface: the top lift's porosity is measured a band below it.
   t.filling.soil_continues_above = box.top_shared;
@@ -113,7 +122,9 @@ ParticleBox box_in_lifts(const HybridPullOutSpec &spec, const Lifts &lifts, cons
 bool takes_its_grains(const ParticleBox &box, double room)
 {
   const dem::TankFillingSpec &f = box.box_tank.filling;
-  const double thickness = box.box_tank.geometry.fill_height / static_cast<double>(f.n_layers);
+  dem::TankFillingSpec resolved = f;
+  resolved.height = box.box_tank.geometry.fill_height;
+  const double thickness = dem::thinnest_layer(resolved);
   return room * box.largest_grain <= 0.2 * std::min(box.box_tank.geometry.tank_length, thickness);
 }
 
@@ -131,18 +142,58 @@ std::optional<ParticleBox> try_box(const HybridPullOutSpec &spec, const Lifts &l
     }
 }
 
+/// Each part of the box in lifts of its own: the margin below the sheet (or the soil below it),
+/// a wrap-around's rise to its upper part, and the margin above its highest part (or the soil
+/// above it, where the continuum left above would be thinner than `least`), each divided evenly
+/// into as many lifts at least `least` thick as it holds. None if a part is thinner than that.
+std::optional<Lifts> lifts_by_part(const HybridPullOutSpec &spec, double least)
+{
+  const dem::PullOutGeometry &g = spec.tank.geometry;
+  const double sheet_level = g.sheet_level();
+  const bool wrap = g.anchorage == dem::Anchorage::wrap_around && spec.region.dem_region_length == 0.0;
+  const double rise = wrap ? g.return_height : 0.0;
+  const double below = std::min(spec.region.margin, sheet_level);
+  const double soil_above = g.fill_height - sheet_level - rise;
+  const double above = soil_above - spec.region.margin < least ? soil_above : spec.region.margin;
+  Lifts lifts;
+  lifts.below = below;
+  lifts.thickness = g.fill_height;
+  double level = 0.0;
+  for (const double part : {below, rise, above})
+    {
+      if (part <= 0.0)
+        continue;
+      const auto n = static_cast<std::size_t>(std::floor(part / least + 1e-9));
+      if (n == 0)
+        return std::nullopt;
+      for (std::size_t i = 1; i <= n; ++i)
+        lifts.tops.push_back(i == n ? level + part : level + part * static_cast<double>(i) / static_cast<double>(n));
+      lifts.thickness = std::min(lifts.thickness, part / static_cast<double>(n));
+      level += part;
+      if (lifts.n_below == 0)
+        lifts.n_below = n;
+    }
+  return lifts;
+}
+
 /// The automatic choice's cuts after the former default's, best first: the margin below the
-/// sheet divided into fewer lifts, then whole lifts reaching past the margin (the box further
-/// down), aligned with a wrap-around's upper part, from the thinnest the grains allow.
+/// sheet divided into fewer lifts; each part of the box in lifts of its own (lifts_by_part);
+/// then whole lifts reaching past the margin (the box further down), aligned with a wrap-around's
+/// upper part; from the thinnest the grains allow.
 std::vector<Lifts> thicker_cuts(const HybridPullOutSpec &spec, const Lifts &former)
 {
   std::vector<Lifts> cuts;
   for (std::size_t n = former.n_below - 1; n >= 1; --n)
-    cuts.push_back({former.below / static_cast<double>(n), n, former.below});
+    cuts.push_back({former.below / static_cast<double>(n), n, former.below, {}});
   const dem::PullOutGeometry &g = spec.tank.geometry;
   const double sheet_level = g.sheet_level();
   // The grains' size from the whole tank: the box's draw is the same size give or take its scatter.
   const double least = 5.0 * automatic_lift_room * dem::largest_particle_extent(spec.tank.resolved_filling());
+  // In steps of 1 % for the box's draw, which scatters round the tank's by about that.
+  for (const double step : {1.0, 1.01, 1.02, 1.03, 1.05})
+    if (std::optional<Lifts> by_part = lifts_by_part(spec, least * step))
+      if (cuts.empty() || by_part->tops != cuts.back().tops)
+        cuts.push_back(*by_part);
   const bool wrap = g.anchorage == dem::Anchorage::wrap_around && spec.region.dem_region_length == 0.0;
   std::vector<double> thicknesses;
   if (wrap)
@@ -159,7 +210,7 @@ std::vector<Lifts> thicker_cuts(const HybridPullOutSpec &spec, const Lifts &form
     {
       const auto n = static_cast<std::size_t>(std::ceil(former.below / t - 1e-9));
       if (static_cast<double>(n) * t <= sheet_level * (1.0 + 1e-9))
-        cuts.push_back({t, n, std::min(static_cast<double>(n) * t, sheet_level)});
+        cuts.push_back({t, n, std::min(static_cast<double>(n) * t, sheet_level), {}});
     }
   return cuts;
 }
@@ -200,7 +251,8 @@ std::size_t particles_for(HybridPullOutSpec spec, const Lifts &lifts, const std:
 std::string lifts_description(const ParticleBox &box)
 {
   std::ostringstream text;
-  text << box.n_lifts << " lifts of " << box.lift_thickness << " m, the box [" << box.x0 << ", " << box.x1 << "] x ["
+  text << box.n_lifts << " lifts of " << (box.box_tank.filling.layer_tops.empty() ? "" : "at least ") << box.lift_thickness
+       << " m, the box [" << box.x0 << ", " << box.x1 << "] x ["
        << box.y0 << ", " << box.y1 << "] m";
   return text.str();
 }
@@ -213,7 +265,18 @@ ParticleBox particle_box(const HybridPullOutSpec &spec, const std::string &where
   if (spec.region.lift_thickness > 0.0)
     {
       const Lifts given = lifts_at_most(spec, spec.region.lift_thickness);
-      const ParticleBox box = box_in_lifts(spec, given, where);
+      ParticleBox box;
+      try
+        {
+          box = box_in_lifts(spec, given, where);
+        }
+      catch (const std::invalid_argument &e)
+        {
+          // Lifts of one thickness that miss a wrap-around's upper part, or leave too little above.
+          throw std::invalid_argument(std::string(e.what()) + " (with 'Hybrid/lift thickness' = " +
+                                      std::to_string(spec.region.lift_thickness) +
+                                      "; 'Hybrid/lift thickness' = auto gives each part of the box lifts of its own)");
+        }
       if (takes_its_grains(box, 1.0) || spec.region.box_cut_from_a_filled_tank)
         return box;
       std::ostringstream message;

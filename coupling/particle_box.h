@@ -12,9 +12,10 @@
 //   sheet divided evenly, as always; checked against the grains.
 // - Automatic lifts (0): the given rule at the former default, 0.05 m, when the fill takes its
 //   grains, so that an input that ran keeps its numbers; otherwise the thinnest aligned lifts at
-//   least automatic_lift_room x 5 largest grains thick: the margin below divided into fewer lifts,
-//   and failing that whole lifts reaching past the margin, the box then further down (the margin
-//   is a least distance).
+//   least automatic_lift_room x 5 largest grains thick: the margin below divided into fewer lifts;
+//   failing that, lifts of their own thickness in each part of the box (the margin below, a
+//   wrap-around's rise, the margin above: the margin exactly); failing that, whole lifts reaching
+//   past the margin, the box then further down (the margin is a least distance).
 #include "dem/laboratory/pullout_tank.h"
 
 #include <cstddef>
@@ -30,7 +31,7 @@ struct ParticleBox
   double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
   bool left_shared = false, bottom_shared = false, top_shared = false;
   std::size_t n_lifts = 0;
-  double lift_thickness = 0.0; ///< of each of its lifts [m]
+  double lift_thickness = 0.0; ///< of its lifts, the thinnest if they differ (box_tank.filling.layer_tops) [m]
   std::size_t n_particles = 0; ///< the whole tank's number in proportion to the box's area
   /// The largest grain its fill will make (dem::largest_particle_extent), at most a fifth of a lift [m].
   double largest_grain = 0.0;

@@ -122,6 +122,45 @@ TEST(ParticleBoxLifts, AutomaticLiftsPutTheUpperPartOnALiftBoundary)
   expect_the_rule(coarse);
 }
 
+// A margin no one lift thickness fits (issue 26: the wrap-around needs 0.15 m): each part of the
+// box in lifts of its own, the margin exact below the sheet, the sheet and the upper part on lift
+// boundaries, every lift at least 5.25 of the box's largest grains. The main job's grains
+// (12,500 clusters): 0.15 m below, D1 = 0.2 m, and 0.2 m above the upper part to the surface,
+// since the 0.05 m of continuum the margin would leave there is thinner than a lift. With 25,000
+// clusters and a 0.125 m margin the box stops 0.125 m above the upper part, under the continuum.
+TEST(ParticleBoxLifts, AutomaticLiftsOfTheirOwnThicknessInEachPartOfTheBox)
+{
+  const auto expect_by_part = [](const ParticleBox &box, double margin, double top) {
+    const dem::TankFillingSpec f = box.box_tank.resolved_filling();
+    ASSERT_EQ(f.layer_tops.size(), box.n_lifts);
+    EXPECT_NEAR(box.y0, 0.2 - margin, 1e-12);
+    EXPECT_NEAR(box.y1, top, 1e-12);
+    EXPECT_GE(dem::thinnest_layer(f), 5.0 * automatic_lift_room * box.largest_grain);
+    EXPECT_NEAR(dem::thinnest_layer(f), box.lift_thickness, 1e-12);
+    EXPECT_TRUE(dem::layers_below_level(f, margin, 1e-9).has_value());       // the sheet
+    EXPECT_TRUE(dem::layers_below_level(f, margin + 0.2, 1e-9).has_value()); // the upper part
+    EXPECT_NEAR(f.layer_tops.back(), box.y1 - box.y0, 1e-12);
+  };
+  HybridPullOutSpec wide = paper_tank(12500, true);
+  wide.region.margin = 0.15;
+  const ParticleBox main_grains = particle_box(wide, "test.prm");
+  expect_by_part(main_grains, 0.15, 0.6);
+  EXPECT_FALSE(main_grains.top_shared);
+  EXPECT_EQ(main_grains.n_lifts, 5u); // 0.15 | 0.1 0.1 | 0.1 0.1
+
+  HybridPullOutSpec fine = paper_tank(25000, true);
+  fine.region.margin = 0.125;
+  const ParticleBox fine_grains = particle_box(fine, "test.prm");
+  expect_by_part(fine_grains, 0.125, 0.525);
+  EXPECT_TRUE(fine_grains.top_shared);
+
+  // Given lifts of one thickness that miss the upper part: the refusal names the automatic choice.
+  wide.region.lift_thickness = 0.1;
+  const std::string message = invalid_argument_message([&] { particle_box(wide, "main_job.prm"); });
+  EXPECT_NE(message.find("'Hybrid/lift thickness' = auto gives each part of the box lifts of its own"), std::string::npos)
+    << message;
+}
+
 // Given lifts still win and are checked: the refusal names the entry, the input file and the
 // particles that would fill them (checked: they do), and the automatic lifts that would do.
 // Too few grains for any lift: the refusal names the particles that would do (checked).

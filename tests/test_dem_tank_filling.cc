@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 using namespace geohybrid::dem;
 
@@ -188,6 +189,51 @@ TEST(TankFilling, SlabPorosityCutsDiscsExactly)
   EXPECT_NEAR(slab_porosity(p, 0.0, 0.1, 0.0, 0.1), 1.0 - solid / 0.01, 1e-12);
 }
 
+// Layers of their own thickness (TankFillingSpec::layer_tops, as a particle box fills the parts
+// round a sheet): the two-lift tank with its upper lift 0.055 m instead of 0.045 m, and grains
+// in the same number per area (222 clusters). Each layer lies at its levels, gets its grains by
+// the space it fills (the first its slab and the band of one largest grain above it, to the
+// rounding of a cluster), and reaches its porosity (the tolerance of the test above).
+TEST(TankFilling, LayersOfTheirOwnThicknessEachAtItsPorosity)
+{
+  TankFillingSpec spec = two_lifts();
+  spec.height = 0.1;
+  spec.n_particles = 222;
+  spec.layer_tops = {0.045, 0.1};
+  EXPECT_EQ(thinnest_layer(spec), 0.045);
+  const FilledTank tank = fill_tank_in_layers(spec);
+  ASSERT_EQ(tank.layers.size(), 2u);
+  EXPECT_EQ(tank.layers[0].bottom, 0.0);
+  EXPECT_EQ(tank.layers[0].top, 0.045);
+  EXPECT_EQ(tank.layers[1].bottom, 0.045);
+  EXPECT_EQ(tank.layers[1].top, 0.1);
+  EXPECT_EQ(tank.layers[0].n_bodies + tank.layers[1].n_bodies, spec.n_particles);
+  const double band = static_cast<double>(tank.layers[0].n_bodies) * spec.height / 222.0 - 0.045;
+  EXPECT_NEAR(band, largest_particle_extent(spec), 0.5 * spec.height / 222.0);
+  for (const TankLayer &layer : tank.layers)
+    {
+      EXPECT_NEAR(layer.porosity, layer.target_porosity, 2.0 * spec.porosity_tolerance);
+      std::cout << "layer [" << layer.bottom << ", " << layer.top << "] m: " << layer.n_bodies << " clusters, porosity "
+                << layer.porosity << std::endl;
+    }
+  EXPECT_LT(unbalanced_force_ratio(tank.system), spec.equilibrium_unbalanced_ratio);
+}
+
+// Equal layers keep the levels they had before layers could differ, to the bit (fills made before
+// are made again bit for bit), and layers_below_level finds a level on a boundary only.
+TEST(TankFilling, EqualLayersKeepTheirLevels)
+{
+  const TankFillingSpec spec = small_tank();
+  const double thickness = spec.height / 3.0;
+  EXPECT_EQ(layer_bottom(spec, 1), 1.0 * thickness);
+  EXPECT_EQ(layer_top(spec, 1), 2.0 * thickness);
+  EXPECT_EQ(layer_top(spec, 2), spec.height);
+  EXPECT_EQ(layer_thickness(spec, 2), thickness);
+  EXPECT_EQ(layers_below_level(spec, 2.0 * thickness, 1e-9), std::optional<std::size_t>(2));
+  EXPECT_EQ(layers_below_level(spec, 0.0, 1e-9), std::optional<std::size_t>(0));
+  EXPECT_FALSE(layers_below_level(spec, 1.5 * thickness, 1e-9).has_value());
+}
+
 TEST(TankFilling, BadInputRefused)
 {
   TankFillingSpec spec = small_tank();
@@ -204,5 +250,14 @@ TEST(TankFilling, BadInputRefused)
   EXPECT_THROW(fill_tank_in_layers(spec), std::invalid_argument);
   spec = small_tank();
   spec.layer_porosities = {0.2, 0.9, 0.2}; // refused before the first layer is made
+  EXPECT_THROW(fill_tank_in_layers(spec), std::invalid_argument);
+  spec = small_tank();
+  spec.layer_tops = {0.045, 0.135}; // three layers
+  EXPECT_THROW(fill_tank_in_layers(spec), std::invalid_argument);
+  spec.layer_tops = {0.09, 0.045, 0.135}; // not rising
+  EXPECT_THROW(fill_tank_in_layers(spec), std::invalid_argument);
+  spec.layer_tops = {0.045, 0.09, 0.12}; // the last not at the fill's height
+  EXPECT_THROW(fill_tank_in_layers(spec), std::invalid_argument);
+  spec.layer_tops = {0.03, 0.09, 0.135}; // a layer 0.03 m thick: thinner than five of its particles
   EXPECT_THROW(fill_tank_in_layers(spec), std::invalid_argument);
 }

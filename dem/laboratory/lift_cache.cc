@@ -67,7 +67,7 @@ private:
 // a setting the key does not see would be a lift made with another setting. (Sizes on x86-64.)
 static_assert(sizeof(ContactParameters) == 56, "ContactParameters changed: add the field to lift_cache_key");
 static_assert(sizeof(RedfSpec) == 272, "RedfSpec changed: add the field to lift_cache_key");
-static_assert(sizeof(TankFillingSpec) == 488, "TankFillingSpec changed: add the field to lift_cache_key");
+static_assert(sizeof(TankFillingSpec) == 512, "TankFillingSpec changed: add the field to lift_cache_key");
 } // namespace
 
 std::uint64_t lift_cache_key(const TankFillingSpec &t, std::size_t layer_index, const RedfSpec &s,
@@ -84,6 +84,12 @@ std::uint64_t lift_cache_key(const TankFillingSpec &t, std::size_t layer_index, 
   for (const std::uint64_t v : {std::uint64_t(t.n_layers), std::uint64_t(t.n_particles), std::uint64_t(t.shape),
                                 std::uint64_t(t.later_lifts_start_near_the_lift_below), t.seed, t.max_steps_per_layer})
     h.count(v);
+  if (!t.layer_tops.empty()) // keys made before varied layers kept
+    {
+      h.count(t.layer_tops.size());
+      for (const double v : t.layer_tops)
+        h.real(v);
+    }
   h.count(t.layer_porosities.size());
   for (const double v : t.layer_porosities)
     h.real(v);

@@ -70,8 +70,8 @@ DemSystemState grow_lift(ParticleSet particles, const TankFillingSpec &t, const 
   layer.growth_friction_deg = grown.growth_friction_deg;
   layer.n_growth_steps = grown.n_steps;
   growing.set_particle_law(material);
-  // The lid parked above the fill (one layer's thickness above it), where it touches nothing.
-  const double thickness = t.height / static_cast<double>(t.n_layers);
+  // The lid parked above the fill (its top layer's thickness above it), where it touches nothing.
+  const double thickness = layer_thickness(t, t.n_layers - 1);
   growing.walls()[walls.lid].translate(Vec2(0.0, t.height + thickness - levels.lid));
   return growing.export_state();
 }

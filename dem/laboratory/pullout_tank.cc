@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -81,21 +82,29 @@ void PullOutTankSpec::validate(const std::string &where) const
   sheet.validate(where + ", subsection Sheet");
   require(positive(max_segment_length), where, "Sheet/segment length", max_segment_length, "must be positive [m]");
   require(positive(unit_weight), where, "Soil/unit weight", unit_weight, "must be positive [N/m^3]");
+  TankFillingSpec f = filling;
+  f.height = geometry.fill_height;
   const double n = static_cast<double>(filling.n_layers);
-  const double thickness = geometry.fill_height / n;
-  const double below = geometry.sheet_level() / thickness;
-  require(filling.n_layers >= 2 && std::abs(below - std::round(below)) < 1e-6 && std::round(below) >= 1.0, where,
-          "Filling/number of layers", n,
+  std::string layers;
+  if (f.layer_tops.empty())
+    layers = "layers " + std::to_string(geometry.fill_height / n) + " m thick";
+  else
+    for (const double top : f.layer_tops)
+      layers += (layers.empty() ? "layer tops at " : ", ") + std::to_string(top);
+  const double tolerance = 1e-6 * thinnest_layer(f);
+  const std::optional<std::size_t> below = layers_below_level(f, geometry.sheet_level(), tolerance);
+  require(filling.n_layers >= 2 && below && *below >= 1 && *below < filling.n_layers, where, "Filling/number of layers", n,
           "must put a layer boundary at the sheet level (fill height - H = " + std::to_string(geometry.sheet_level()) +
-            " m with layers " + std::to_string(thickness) + " m thick)");
+            " m with " + layers + ")");
   if (geometry.anchorage == Anchorage::wrap_around)
     {
       // The upper part is laid on the lift whose top is at its level (resolved_filling).
-      const double top = (geometry.sheet_level() + geometry.return_height) / thickness;
-      require(std::abs(top - std::round(top)) < 1e-6 && std::round(top) < n, where, "Filling/number of layers", n,
+      const std::optional<std::size_t> top =
+        layers_below_level(f, geometry.sheet_level() + geometry.return_height, tolerance);
+      require(top && *top < filling.n_layers, where, "Filling/number of layers", n,
               "must put a layer boundary at the level of the sheet's upper part (fill height - H + D1 = " +
-                std::to_string(geometry.sheet_level() + geometry.return_height) + " m with layers " +
-                std::to_string(thickness) + " m thick) and leave at least one layer above it");
+                std::to_string(geometry.sheet_level() + geometry.return_height) + " m with " + layers +
+                ") and leave at least one layer above it");
     }
 }
 
@@ -120,8 +129,16 @@ TankFillingSpec PullOutTankSpec::resolved_filling() const
   t.wall_contact.bond_new_contacts = false;
 
   SheetLaying laying;
-  const double thickness = t.height / static_cast<double>(t.n_layers);
-  laying.layers_below = static_cast<std::size_t>(std::lround(geometry.sheet_level() / thickness));
+  const double tolerance = 1e-6 * thinnest_layer(t); // validate() found the boundaries
+  const auto boundary = [&](double level) {
+    if (const std::optional<std::size_t> below = layers_below_level(t, level, tolerance))
+      return *below;
+    if (t.layer_tops.empty()) // the nearest boundary, as before varied layers (validate() refuses it)
+      return static_cast<std::size_t>(std::lround(level / (t.height / static_cast<double>(t.n_layers))));
+    throw std::invalid_argument("pull-out tank: no layer boundary at the sheet's level " + std::to_string(level) +
+                                " m ('Filling/number of layers')");
+  };
+  laying.layers_below = boundary(geometry.sheet_level());
   const PullOutGeometry g = geometry;
   const SheetParameters sheet_parameters = sheet;
   const double segment = max_segment_length;
@@ -132,7 +149,7 @@ TankFillingSpec PullOutTankSpec::resolved_filling() const
   // folded over that lift, levelled as the one under the lower part.
   const double upper_level = g.sheet_level() + g.return_height; // nominal
   if (wrap)
-    laying.second_part_layers_below = static_cast<std::size_t>(std::lround(upper_level / thickness));
+    laying.second_part_layers_below = boundary(upper_level);
   laying.slot_height = 0.0; // automatic: the sheet's thickness plus half the smallest grain
   laying.lay = [g, sheet_parameters, segment, wrap, upper_level](const DemSystem &settled) {
     // The sheet rests on the highest grain under its lower part (it is laid on the lift).

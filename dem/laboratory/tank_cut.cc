@@ -117,7 +117,7 @@ PullOutTank cut_pull_out_tank(const PullOutTank &tank, double tank_length, const
   // The lid parked one lift above the fill, as a fill leaves it, and above the grains cut by the
   // top; the base and the left wall moved out past the grains cut by them (they touch none); the
   // front wall's slot where the tank's is.
-  const double parked = f.height + above + f.height / static_cast<double>(f.n_layers);
+  const double parked = f.height + above + layer_thickness(f, f.n_layers - 1);
   const FilledTank &t = tank.tank;
   const bool slot = t.slot_top > t.slot_bottom;
   const TankWalls walls = add_tank_walls(system, f, parked, slot ? t.slot_bottom - y0 : 0.0, slot ? t.slot_top - y0 : 0.0);

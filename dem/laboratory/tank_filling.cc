@@ -51,6 +51,19 @@ void check_spec(const TankFillingSpec &t)
   if (t.n_particles < t.n_layers)
     throw std::invalid_argument("tank filling: " + std::to_string(t.n_particles) + " particles cannot make " +
                                 std::to_string(t.n_layers) + " layers");
+  if (!t.layer_tops.empty())
+    {
+      if (t.layer_tops.size() != t.n_layers)
+        throw std::invalid_argument("tank filling: " + std::to_string(t.layer_tops.size()) + " layer tops given for " +
+                                    std::to_string(t.n_layers) + " layers");
+      for (std::size_t k = 0; k < t.n_layers; ++k)
+        if (!(layer_top(t, k) > layer_bottom(t, k)))
+          throw std::invalid_argument("tank filling: the layer tops must rise from the base (layer " +
+                                      std::to_string(k + 1) + "'s top at " + std::to_string(layer_top(t, k)) + " m)");
+      if (std::abs(t.layer_tops.back() - t.height) > 1e-9 * t.height)
+        throw std::invalid_argument("tank filling: the last layer's top " + std::to_string(t.layer_tops.back()) +
+                                    " m is not the fill's height " + std::to_string(t.height) + " m");
+    }
   if (!t.layer_porosities.empty() && t.layer_porosities.size() != t.n_layers)
     throw std::invalid_argument("tank filling: " + std::to_string(t.layer_porosities.size()) +
                                 " layer porosities given for " + std::to_string(t.n_layers) + " layers");
@@ -106,27 +119,29 @@ class LiftPlan
 {
 public:
   explicit LiftPlan(const TankFillingSpec &t)
-    : t_(t), thickness_(t.height / static_cast<double>(t.n_layers)), cumulative_space_(t.n_layers + 1, 0.0)
+    : t_(t), cumulative_space_(t.n_layers + 1, 0.0)
   {
     const std::size_t n_layers = t.n_layers;
     if (n_layers > 1 || t.soil_continues_above)
       {
         const RedfSpec whole = layer_redf_spec(t, 0, t.n_particles, porosity(0));
+        const double thinnest = thinnest_layer(t);
         std::ostringstream region;
-        region << "the tank (" << t.width << " m x " << t.height << " m in layers " << thickness_ << " m thick)";
-        band_ = redf_starting_sizes(whole, t.width * t.height, std::min(t.width, thickness_), region.str()).largest_extent;
+        region << "the tank (" << t.width << " m x " << t.height << " m in layers "
+               << (t.layer_tops.empty() ? "" : "at least ") << thinnest << " m thick)";
+        band_ = redf_starting_sizes(whole, t.width * t.height, std::min(t.width, thinnest), region.str()).largest_extent;
       }
     // Particles in proportion to the space each layer fills: a layer with a band also fills it;
     // the next one fills from the top of that band.
     for (std::size_t k = 0; k < n_layers; ++k)
-      cumulative_space_[k + 1] = static_cast<double>(k + 1) * thickness_ + (has_band(k) ? band_ : 0.0);
+      cumulative_space_[k + 1] = top(k) + (has_band(k) ? band_ : 0.0);
     cumulative_space_[n_layers] = t.height;
   }
 
-  double thickness() const { return thickness_; }
+  double thickness(std::size_t k) const { return layer_thickness(t_, k); }
   double porosity(std::size_t k) const { return t_.layer_porosities.empty() ? t_.target_porosity : t_.layer_porosities[k]; }
-  double bottom(std::size_t k) const { return static_cast<double>(k) * thickness_; }
-  double top(std::size_t k) const { return k + 1 == t_.n_layers ? t_.height : static_cast<double>(k + 1) * thickness_; }
+  double bottom(std::size_t k) const { return layer_bottom(t_, k); }
+  double top(std::size_t k) const { return layer_top(t_, k); }
   double lid(std::size_t k) const { return has_band(k) ? top(k) + band_ : top(k); }
   /// The part of lift k's slab whose porosity its growth aims at: a band below a lid past which
   /// the soil goes on.
@@ -151,10 +166,48 @@ private:
   }
 
   const TankFillingSpec &t_;
-  double thickness_, band_ = 0.0;
+  double band_ = 0.0;
   std::vector<double> cumulative_space_; ///< height of the space the lifts below k fill
 };
 } // namespace
+
+double layer_bottom(const TankFillingSpec &t, std::size_t k)
+{
+  if (t.layer_tops.empty())
+    return static_cast<double>(k) * (t.height / static_cast<double>(t.n_layers));
+  return k == 0 ? 0.0 : t.layer_tops[k - 1];
+}
+
+double layer_top(const TankFillingSpec &t, std::size_t k)
+{
+  if (k + 1 == t.n_layers)
+    return t.height;
+  return t.layer_tops.empty() ? static_cast<double>(k + 1) * (t.height / static_cast<double>(t.n_layers)) : t.layer_tops[k];
+}
+
+double layer_thickness(const TankFillingSpec &t, std::size_t k)
+{
+  // Equal layers: height / n_layers as such, the bits every fill made before varied layers.
+  return t.layer_tops.empty() ? t.height / static_cast<double>(t.n_layers) : layer_top(t, k) - layer_bottom(t, k);
+}
+
+double thinnest_layer(const TankFillingSpec &t)
+{
+  double thinnest = layer_thickness(t, 0);
+  for (std::size_t k = 1; k < t.n_layers; ++k)
+    thinnest = std::min(thinnest, layer_thickness(t, k));
+  return thinnest;
+}
+
+std::optional<std::size_t> layers_below_level(const TankFillingSpec &t, double level, double tolerance)
+{
+  if (std::abs(level) <= tolerance)
+    return 0;
+  for (std::size_t k = 0; k < t.n_layers; ++k)
+    if (std::abs(layer_top(t, k) - level) <= tolerance)
+      return k + 1;
+  return std::nullopt;
+}
 
 DemSettings tank_settling_settings(const TankFillingSpec &t)
 {
@@ -220,7 +273,7 @@ FilledTank fill_tank_in_layers(const TankFillingSpec &t, const std::function<voi
       ParticleSet particles = settled ? settled->particles() : ParticleSet();
       layer.first_body = particles.n_bodies();
       const std::vector<double> radii =
-        redf_starting_sizes(s, t.width * plan.space(k), std::min(t.width, plan.thickness()), region.str()).radii;
+        redf_starting_sizes(s, t.width * plan.space(k), std::min(t.width, plan.thickness(k)), region.str()).radii;
       place_lift_grains(t, s, radii, laid, layer, levels.lid, where, particles);
       layer.n_bodies = particles.n_bodies() - layer.first_body;
 

@@ -95,8 +95,12 @@ struct SheetLaying
 struct TankFillingSpec
 {
   double width = 1.0;                 ///< inner width of the tank [m]
-  double height = 0.5;                ///< height of the fill [m]; each layer height / n_layers thick
+  double height = 0.5;                ///< height of the fill [m]
   std::size_t n_layers = 5;
+  /// Each layer's top above the base, bottom first, rising, the last at `height` [m]. Empty: the
+  /// layers are height / n_layers thick. (A particle box fills the margin below a sheet, the
+  /// rise to a wrap-around's upper part and the margin above in lifts of their own thickness.)
+  std::vector<double> layer_tops;
   std::size_t n_particles = 20000;    ///< in the whole fill (see TankLayer for each layer's share)
   ParticleShape shape = ParticleShape::two_disc_cluster;
   /// Relative sizes, scaled in each layer so that its particles fill it at its target porosity.
@@ -201,6 +205,17 @@ RedfStartingSizes whole_fill_sizes(const TankFillingSpec &spec, double porosity)
 /// whole fill's draw at the first layer's porosity): the fill refuses layers thinner than five
 /// times this. Each layer's own draw scatters round it by about 1 / sqrt(its particles) [m].
 double largest_particle_extent(const TankFillingSpec &spec);
+
+/// Layer k's levels and thickness: its top is layer_tops[k], or (k + 1) height / n_layers with the
+/// last at height exactly [m].
+double layer_bottom(const TankFillingSpec &spec, std::size_t k);
+double layer_top(const TankFillingSpec &spec, std::size_t k);
+double layer_thickness(const TankFillingSpec &spec, std::size_t k);
+/// The thinnest layer, which the fill's grains must fit (five of the largest across it) [m].
+double thinnest_layer(const TankFillingSpec &spec);
+/// The number of layers whose tops lie at or below `level`, if a layer's top (or the base) is at
+/// `level` within `tolerance`; none otherwise.
+std::optional<std::size_t> layers_below_level(const TankFillingSpec &spec, double level, double tolerance);
 
 /// The settings of the filled tank's system (gravity along -y, the spec's local damping and
 /// threads, the automatic time step): those a system continuing a saved tank must have.
