@@ -142,11 +142,18 @@ std::optional<ParticleBox> try_box(const HybridPullOutSpec &spec, const Lifts &l
     }
 }
 
+/// How lifts_by_part divides each part of the box.
+enum class PartLifts
+{
+  tank_lifts, ///< at the whole tank's own lift boundaries ('Filling/number of layers') inside it
+  even        ///< evenly, into as many lifts at least `least` thick as it holds
+};
+
 /// Each part of the box in lifts of its own: the margin below the sheet (or the soil below it),
 /// a wrap-around's rise to its upper part, and the margin above its highest part (or the soil
-/// above it, where the continuum left above would be thinner than `least`), each divided evenly
-/// into as many lifts at least `least` thick as it holds. None if a part is thinner than that.
-std::optional<Lifts> lifts_by_part(const HybridPullOutSpec &spec, double least)
+/// above it, where the continuum left above would be thinner than `least`), divided as `how`
+/// says. None if a lift would be thinner than `least`.
+std::optional<Lifts> lifts_by_part(const HybridPullOutSpec &spec, double least, PartLifts how)
 {
   const dem::PullOutGeometry &g = spec.tank.geometry;
   const double sheet_level = g.sheet_level();
@@ -155,31 +162,53 @@ std::optional<Lifts> lifts_by_part(const HybridPullOutSpec &spec, double least)
   const double below = std::min(spec.region.margin, sheet_level);
   const double soil_above = g.fill_height - sheet_level - rise;
   const double above = soil_above - spec.region.margin < least ? soil_above : spec.region.margin;
+  dem::TankFillingSpec tank = spec.tank.filling;
+  tank.height = g.fill_height;
   Lifts lifts;
   lifts.below = below;
   lifts.thickness = g.fill_height;
-  double level = 0.0;
+  const double y0 = sheet_level - below; // the box's bottom in the tank's frame
+  double level = 0.0;                    // the part's bottom in the box's frame
   for (const double part : {below, rise, above})
     {
       if (part <= 0.0)
         continue;
-      const auto n = static_cast<std::size_t>(std::floor(part / least + 1e-9));
-      if (n == 0)
-        return std::nullopt;
-      for (std::size_t i = 1; i <= n; ++i)
-        lifts.tops.push_back(i == n ? level + part : level + part * static_cast<double>(i) / static_cast<double>(n));
-      lifts.thickness = std::min(lifts.thickness, part / static_cast<double>(n));
-      level += part;
+      std::vector<double> tops;
+      if (how == PartLifts::tank_lifts)
+        {
+          for (std::size_t k = 0; k + 1 < tank.n_layers; ++k)
+            if (const double top = dem::layer_top(tank, k) - y0; top > level + 1e-9 && top < level + part - 1e-9)
+              tops.push_back(top);
+          tops.push_back(level + part);
+        }
+      else
+        {
+          const auto n = static_cast<std::size_t>(std::floor(part / least + 1e-9));
+          for (std::size_t i = 1; i <= n; ++i)
+            tops.push_back(i == n ? level + part : level + part * static_cast<double>(i) / static_cast<double>(n));
+        }
+      double bottom = level;
+      for (const double top : tops)
+        {
+          if (top - bottom < least)
+            return std::nullopt;
+          lifts.thickness = std::min(lifts.thickness, top - bottom);
+          bottom = top;
+        }
+      lifts.tops.insert(lifts.tops.end(), tops.begin(), tops.end());
       if (lifts.n_below == 0)
-        lifts.n_below = n;
+        lifts.n_below = tops.size();
+      level += part;
     }
   return lifts;
 }
 
 /// The automatic choice's cuts after the former default's, best first: the margin below the
-/// sheet divided into fewer lifts; each part of the box in lifts of its own (lifts_by_part);
-/// then whole lifts reaching past the margin (the box further down), aligned with a wrap-around's
-/// upper part; from the thinnest the grains allow.
+/// sheet divided into fewer lifts; each part of the box in lifts of its own (lifts_by_part), the
+/// whole tank's lifts first (the box's grains then grow in lifts of the thickness pure DEM's do,
+/// which sets the friction they grow at), then the thinnest the grains allow; then whole lifts
+/// reaching past the margin (the box further down), aligned with a wrap-around's upper part, from
+/// the thinnest the grains allow.
 std::vector<Lifts> thicker_cuts(const HybridPullOutSpec &spec, const Lifts &former)
 {
   std::vector<Lifts> cuts;
@@ -190,10 +219,11 @@ std::vector<Lifts> thicker_cuts(const HybridPullOutSpec &spec, const Lifts &form
   // The grains' size from the whole tank: the box's draw is the same size give or take its scatter.
   const double least = 5.0 * automatic_lift_room * dem::largest_particle_extent(spec.tank.resolved_filling());
   // In steps of 1 % for the box's draw, which scatters round the tank's by about that.
-  for (const double step : {1.0, 1.01, 1.02, 1.03, 1.05})
-    if (std::optional<Lifts> by_part = lifts_by_part(spec, least * step))
-      if (cuts.empty() || by_part->tops != cuts.back().tops)
-        cuts.push_back(*by_part);
+  for (const PartLifts how : {PartLifts::tank_lifts, PartLifts::even})
+    for (const double step : {1.0, 1.01, 1.02, 1.03, 1.05})
+      if (std::optional<Lifts> by_part = lifts_by_part(spec, least * step, how))
+        if (cuts.empty() || by_part->tops != cuts.back().tops)
+          cuts.push_back(*by_part);
   const bool wrap = g.anchorage == dem::Anchorage::wrap_around && spec.region.dem_region_length == 0.0;
   std::vector<double> thicknesses;
   if (wrap)

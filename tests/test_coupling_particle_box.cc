@@ -13,6 +13,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <vector>
 
 using namespace geohybrid;
 using namespace geohybrid::coupling;
@@ -124,10 +125,12 @@ TEST(ParticleBoxLifts, AutomaticLiftsPutTheUpperPartOnALiftBoundary)
 
 // A margin no one lift thickness fits (issue 26: the wrap-around needs 0.15 m): each part of the
 // box in lifts of its own, the margin exact below the sheet, the sheet and the upper part on lift
-// boundaries, every lift at least 5.25 of the box's largest grains. The main job's grains
-// (12,500 clusters): 0.15 m below, D1 = 0.2 m, and 0.2 m above the upper part to the surface,
-// since the 0.05 m of continuum the margin would leave there is thinner than a lift. With 25,000
-// clusters and a 0.125 m margin the box stops 0.125 m above the upper part, under the continuum.
+// boundaries, every lift at least 5.25 of the box's largest grains, the whole tank's lifts (0.2 m)
+// where they fit. The main job's grains (12,500 clusters): 0.15 m below, D1 = 0.2 m, and 0.2 m
+// above the upper part to the surface, since the 0.05 m of continuum the margin would leave there
+// is thinner than a lift. With 25,000 clusters and a 0.125 m margin the box stops 0.125 m above
+// the upper part, under the continuum. Lifts evenly divided where the tank's do not fit: the
+// margin of 0.15 m in a tank of 0.1 m lifts (which would leave a lift of 0.05 m below the sheet).
 TEST(ParticleBoxLifts, AutomaticLiftsOfTheirOwnThicknessInEachPartOfTheBox)
 {
   const auto expect_by_part = [](const ParticleBox &box, double margin, double top) {
@@ -146,7 +149,13 @@ TEST(ParticleBoxLifts, AutomaticLiftsOfTheirOwnThicknessInEachPartOfTheBox)
   const ParticleBox main_grains = particle_box(wide, "test.prm");
   expect_by_part(main_grains, 0.15, 0.6);
   EXPECT_FALSE(main_grains.top_shared);
-  EXPECT_EQ(main_grains.n_lifts, 5u); // 0.15 | 0.1 0.1 | 0.1 0.1
+  EXPECT_EQ(main_grains.box_tank.filling.layer_tops, (std::vector<double>{0.15, 0.35, 0.55})); // the tank's lifts, cut
+
+  HybridPullOutSpec thin_lifts = wide;
+  thin_lifts.tank.filling.n_layers = 6;
+  const ParticleBox even = particle_box(thin_lifts, "test.prm");
+  expect_by_part(even, 0.15, 0.6);
+  EXPECT_EQ(even.n_lifts, 5u); // 0.15 | 0.1 0.1 | 0.1 0.1
 
   HybridPullOutSpec fine = paper_tank(25000, true);
   fine.region.margin = 0.125;
