@@ -51,17 +51,22 @@ ParticleBox box_in_lifts(const HybridPullOutSpec &spec, const Lifts &lifts, cons
   const double lift = lifts.thickness;
   box.y0 = sheet_level - lifts.below;
   box.bottom_shared = box.y0 > 1e-9;
-  // Above: lifts of the same thickness up to `margin` above the sheet's highest part, or to the
-  // surface if it falls on a lift boundary (else the last whole lift below it).
-  auto lifts_above = static_cast<std::size_t>(std::ceil((rise + margin) / lift - 1e-9));
-  const double room = (g.fill_height - sheet_level) / lift;
-  if (static_cast<double>(lifts_above) >= room - 1e-6)
-    lifts_above = static_cast<std::size_t>(std::floor(room + 1e-6));
-  box.y1 = sheet_level + static_cast<double>(lifts_above) * lift;
+  // Above: lifts by part as lifts_by_part cut them; or lifts of the same thickness up to `margin`
+  // above the sheet's highest part, or to the surface if it falls on a lift boundary (else the
+  // last whole lift below it).
+  std::size_t lifts_above = 0;
   if (!lifts.tops.empty())
     {
       lifts_above = lifts.tops.size() - lifts.n_below;
       box.y1 = std::min(box.y0 + lifts.tops.back(), g.fill_height);
+    }
+  else
+    {
+      lifts_above = static_cast<std::size_t>(std::ceil((rise + margin) / lift - 1e-9));
+      const double room = (g.fill_height - sheet_level) / lift;
+      if (static_cast<double>(lifts_above) >= room - 1e-6)
+        lifts_above = static_cast<std::size_t>(std::floor(room + 1e-6));
+      box.y1 = sheet_level + static_cast<double>(lifts_above) * lift;
     }
   box.top_shared = box.y1 < g.fill_height - 1e-9;
   if (box.y1 - (sheet_level + rise) < 0.5 * margin && box.top_shared)
