@@ -203,7 +203,7 @@ private:
   /// Multi-rate: sets ratio_ (0: automatic), throws if the continuum cannot take it; returns the
   /// particles' step.
   double choose_ratio(unsigned int requested_ratio);
-  /// The particles' stable step with the band as it is (the measured margin if its inertia is scaled).
+  /// Multi-rate: the particles' stable step with the band as it is (no margin for its scaled inertia).
   double particle_stable_step() const;
   /// `multi_rate_step`: the particles' step when ratio_ > 1.
   void start_attached(double multi_rate_step);
@@ -228,7 +228,7 @@ private:
   double tied_inertia_factor_ = 1.0; ///< multi-rate: the tied particles' inertia raised by this
   bool hook_starts_window_ = true; ///< multi-rate: whether the next coupling evaluation is a window's start
   CoupledStepTimes times_;
-  /// The fraction of the estimated stable step taken with the band's inertia scaled (start()).
+  /// The fraction of the estimated stable step lockstep takes with the band's inertia scaled.
   static constexpr double scaled_band_step_fraction = 0.8;
 };
 } // namespace geohybrid::coupling

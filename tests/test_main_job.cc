@@ -55,7 +55,7 @@ std::uint64_t bits(double x)
 }
 } // namespace
 
-// About a minute of CPU: the set-up from the filled box, then 5,000 steps of the pull (1.1 mm).
+// About a minute of CPU: the set-up from the filled box, then 5,000 steps of the pull (1.45 mm).
 TEST(MainJob, FirstCurvePointsAreMainsBitForBit)
 {
   const std::vector<std::vector<double>> expected = reference_points(source_dir / "tests/main_job/first_curve_points.txt");
