@@ -9,7 +9,9 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/setup_debian.sh"
 "$root/scripts/build.sh"
 cd "$root"
-export OMP_WAIT_POLICY=PASSIVE # the coupled step's short parallel regions on a shared host (bench/RESULTS.md)
+# OpenMP's wait policy is left to the environment: libgomp's default spins between a step's
+# parallel regions, twice as fast as PASSIVE on a quiet machine; on one shared with other work,
+# export OMP_WAIT_POLICY=PASSIVE first (bench/RESULTS.md, "The OpenMP wait policy").
 # --overwrite: a second run of the job replaces the first one's files (only those geohybrid writes).
 "$root/build/apps/geohybrid" pullout "$root/examples/pullout_hybrid_wraparound_h040_b025.prm" --overwrite
 echo "results: $root/output/pullout_hybrid_wraparound_h040_b025 (summary.json, pullout_curve.png, pullout_curve.csv, sheet_tension.csv, sheet_displacements.csv)"
