@@ -43,10 +43,14 @@ LagrangeTie::LagrangeTie(const BandParticles &band, const dem::ParticleSet &part
         throw std::invalid_argument("Lagrange multiplier coupling: the constraint matrix is not positive definite "
                                     "(a band particle without mass?)");
     }
-  gap_.resize(n);
-  multiplier_.resize(n);
-  work_.resize(n);
-  check_.resize(n);
+  for (unsigned int c = 0; c < 2; ++c)
+    {
+      gap_[c].resize(n);
+      multiplier_[c].resize(n);
+      work_[c].resize(n);
+      check_[c].resize(n);
+    }
+  n_threads_ = static_cast<int>(std::max(1u, continuum.settings().n_threads));
   node_predictor_.assign(mass.locally_owned_size(), 0.0);
 }
 
@@ -68,15 +72,16 @@ void LagrangeTie::predict_nodes(const fem::ExplicitSolver &continuum, double tau
 void LagrangeTie::solve(unsigned int component, const Eigen::VectorXd &b, Eigen::VectorXd &x)
 {
   const Factor &f = *factor_[component];
+  Eigen::VectorXd &work = work_[component];
   const auto &P = f.permutationP().indices();
   const auto &Pinv = f.permutationPinv().indices();
   for (Eigen::Index i = 0; i < b.size(); ++i)
-    work_[P[i]] = b[i];
-  f.matrixL().solveInPlace(work_);
-  work_.array() /= f.vectorD().array();
-  f.matrixU().solveInPlace(work_);
+    work[P[i]] = b[i];
+  f.matrixL().solveInPlace(work);
+  work.array() /= f.vectorD().array();
+  f.matrixU().solveInPlace(work);
   for (Eigen::Index i = 0; i < b.size(); ++i)
-    x[Pinv[i]] = work_[i];
+    x[Pinv[i]] = work[i];
 }
 
 void LagrangeTie::add_to_nodes(fem::ExplicitSolver &continuum, std::size_t p, unsigned int component, double force,
@@ -94,35 +99,49 @@ void LagrangeTie::add_to_nodes(fem::ExplicitSolver &continuum, std::size_t p, un
 void LagrangeTie::solve_and_apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, double tau,
                                   double continuum_share, CouplingForceSums &sums)
 {
+  double gap[2] = {0.0, 0.0};
+#pragma omp parallel for num_threads(2) schedule(static, 1) if (n_threads_ > 1)
+  for (int c = 0; c < 2; ++c)
+    gap[c] = solve_component(static_cast<unsigned int>(c), particles, tau);
+  largest_velocity_gap_ = std::max(gap[0], gap[1]);
+  // On one thread: a node's x and y forces share a cache line, as do the sums' components.
   const BandParticles &band = *band_;
-  const unsigned int n_nodes = band.points.nodes_per_point();
-  const std::size_t n = band.size();
-  largest_velocity_gap_ = 0.0;
   for (unsigned int c = 0; c < 2; ++c)
     {
-      double *const v = c == 0 ? particles.vx.data() : particles.vy.data();
       double *const force = c == 0 ? particles.fx.data() : particles.fy.data();
-      for (std::size_t p = 0; p < n; ++p)
+      for (std::size_t p = 0; p < band.size(); ++p)
         {
-          const std::uint32_t b = band.body[p];
-          double interpolated = 0.0;
-          for (unsigned int k = 0; k < n_nodes; ++k)
-            interpolated += band.points.shape_value(p, k) *
-                            node_predictor_[c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k)];
-          gap_[p] = (v[b] + tau * force[b] * particles.inverse_mass[b] - interpolated) / tau;
-        }
-      solve(c, gap_, multiplier_);
-      check_.noalias() = matrix_[c] * multiplier_;
-      for (std::size_t p = 0; p < n; ++p)
-        largest_velocity_gap_ = std::max(largest_velocity_gap_, tau * std::abs(check_[p] - gap_[p]));
-      for (std::size_t p = 0; p < n; ++p)
-        {
-          const double lambda = multiplier_[p];
+          const double lambda = multiplier_[c][p];
           force[band.body[p]] -= lambda;
           sums.on_particles[c] -= lambda;
           add_to_nodes(continuum, p, c, lambda * continuum_share, sums);
         }
     }
+}
+
+double LagrangeTie::solve_component(unsigned int c, const dem::ParticleSet &particles, double tau)
+{
+  const BandParticles &band = *band_;
+  const unsigned int n_nodes = band.points.nodes_per_point();
+  const std::size_t n = band.size();
+  Eigen::VectorXd &gap = gap_[c], &multiplier = multiplier_[c], &check = check_[c];
+  const double *const v = c == 0 ? particles.vx.data() : particles.vy.data();
+  const double *const force = c == 0 ? particles.fx.data() : particles.fy.data();
+  for (std::size_t p = 0; p < n; ++p)
+    {
+      const std::uint32_t b = band.body[p];
+      double interpolated = 0.0;
+      for (unsigned int k = 0; k < n_nodes; ++k)
+        interpolated += band.points.shape_value(p, k) *
+                        node_predictor_[c == 0 ? band.points.x_dof(p, k) : band.points.y_dof(p, k)];
+      gap[p] = (v[b] + tau * force[b] * particles.inverse_mass[b] - interpolated) / tau;
+    }
+  solve(c, gap, multiplier);
+  check.noalias() = matrix_[c] * multiplier;
+  double largest_gap = 0.0;
+  for (std::size_t p = 0; p < n; ++p)
+    largest_gap = std::max(largest_gap, tau * std::abs(check[p] - gap[p]));
+  return largest_gap;
 }
 
 void LagrangeTie::apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, const TieTiming &timing,

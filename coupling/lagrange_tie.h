@@ -16,7 +16,8 @@
 // with g* the predictors' gap. m_p are the particles' weighted masses and M_I the continuum's
 // weighted lumped masses (a node with a prescribed displacement counts as infinitely heavy). A is
 // symmetric positive definite and constant (fixed weights, fixed X_p): it is factored once (sparse
-// LDL^T, one per component since the constrained DoFs may differ) and each step costs two solves.
+// LDL^T, one per component since the constrained DoFs may differ) and each step costs two solves,
+// one per thread when there are two (each component sums in its own order: the same bits).
 #include "coupling/band_particles.h"
 #include "coupling/coupling_forces.h"
 #include "coupling/coupling_method.h"
@@ -79,7 +80,8 @@ public:
 private:
   using Matrix = Eigen::SparseMatrix<double>;
   using Factor = Eigen::SimplicialLDLT<Matrix>;
-  /// x = A^-1 b with the stored factor, without allocating (Eigen's solve() permutes through a temporary).
+  /// x = A^-1 b with the stored factor, without allocating (Eigen's solve() permutes through a
+  /// temporary, work_[component]).
   void solve(unsigned int component, const Eigen::VectorXd &b, Eigen::VectorXd &x);
   /// node_predictor_ = v_I + tau (f_ext - f_int) / M_I at the band's nodes (prescribed: v_I).
   void predict_nodes(const fem::ExplicitSolver &continuum, double tau);
@@ -88,6 +90,9 @@ private:
   /// tau over the continuum's impulse time, 1 in lockstep).
   void solve_and_apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, double tau,
                        double continuum_share, CouplingForceSums &sums);
+  /// multiplier_[c] from the predictors' gap in component c (on a thread of its own); returns
+  /// the largest velocity gap the solve leaves.
+  double solve_component(unsigned int c, const dem::ParticleSet &particles, double tau);
   /// Adds band particle p's `force` (component 0: x, 1: y) to its nodes' external force.
   void add_to_nodes(fem::ExplicitSolver &continuum, std::size_t p, unsigned int component, double force,
                     CouplingForceSums &sums) const;
@@ -95,7 +100,8 @@ private:
   const BandParticles *band_;
   std::array<Matrix, 2> matrix_;
   std::array<std::unique_ptr<Factor>, 2> factor_;
-  Eigen::VectorXd gap_, multiplier_, work_, check_;
+  std::array<Eigen::VectorXd, 2> gap_, multiplier_, work_, check_; // per component
+  int n_threads_ = 1; ///< the continuum's (its settings): 2 or more solve the components at once
   std::vector<double> node_predictor_; ///< v*_I per local DoF touched by the band
   double largest_velocity_gap_ = 0.0;
 };

@@ -111,6 +111,35 @@ TEST(MultiRate, ContinuedFromTheMiddleOfAWindowIsBitForBit)
             std::string::npos);
 }
 
+// The same run on one and on two threads (the particles', the continuum's cells and the
+// multipliers' two components) ends with the same bits.
+TEST(MultiRate, OneAndTwoThreadsGiveTheSameBits)
+{
+  const double lockstep = coupled_patch_at_rest(LagrangeMultiplierCoupling{}).stepper->time_step();
+  const auto run_on = [&](int n_threads) {
+    dem::DemSettings particles = undamped_settings(lockstep / 4);
+    particles.n_threads = n_threads;
+    fem::ExplicitSettings continuum;
+    continuum.n_threads = static_cast<unsigned int>(n_threads);
+    CoupledPatch patch = coupled_patch_at_rest(LagrangeMultiplierCoupling{}, {}, particles, continuum, MultiRate{4});
+    launch_energy_pulse(patch, 1e-3);
+    patch.stepper->run_steps(402);
+    return patch;
+  };
+  const CoupledPatch one = run_on(1), two = run_on(2);
+  const dem::ParticleSet &a = one.particles->particles(), &b = two.particles->particles();
+  ASSERT_EQ(a.n_bodies(), b.n_bodies());
+  for (std::size_t k = 0; k < a.n_bodies(); ++k)
+    {
+      EXPECT_EQ(a.x[k], b.x[k]);
+      EXPECT_EQ(a.vy[k], b.vy[k]);
+    }
+  const auto &u = one.continuum->displacement(), &w = two.continuum->displacement();
+  for (unsigned int i = 0; i < u.locally_owned_size(); ++i)
+    EXPECT_EQ(u.local_element(i), w.local_element(i));
+  EXPECT_GT(u.linfty_norm(), 0.0); // the pulse reached the continuum
+}
+
 // A ratio the continuum cannot take, and multi-rate with the penalty springs: refused, naming the entry.
 TEST(MultiRate, RefusesAnUnstableRatioAndThePenaltySprings)
 {

@@ -89,6 +89,7 @@ CoupledPatch coupled_patch_at_rest(const CouplingMethod &method, const PatchGeom
   patch.mesh = patch_mesh(g);
   fem::ExplicitSettings settings = patch_continuum_settings(g);
   settings.damping = continuum_settings.damping;
+  settings.n_threads = continuum_settings.n_threads;
   patch.continuum = std::make_unique<fem::ExplicitSolver>(*patch.mesh, matching_soil(g), fem::BoundaryConditions{}, settings);
   patch.stepper =
     std::make_unique<CoupledStepper>(*patch.particles, *patch.continuum, patch_band(g), method, BandTreatment{}, rate);

@@ -73,7 +73,7 @@ struct CoupledPatch
 OverlapBand patch_band(const PatchGeometry &g);
 
 /// The patch at rest (bonded lattice, continuum unstressed) coupled by `method`; `settings` for
-/// the continuum (damping, to test its refusal); `rate` the continuum's step (multi-rate).
+/// the continuum (its damping, to test its refusal, and its threads); `rate` the continuum's step (multi-rate).
 CoupledPatch coupled_patch_at_rest(const CouplingMethod &method, const PatchGeometry &geometry = {},
                                    const dem::DemSettings &particle_settings = undamped_settings(),
                                    const fem::ExplicitSettings &continuum_settings = {},
