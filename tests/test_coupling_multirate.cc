@@ -21,6 +21,25 @@ using namespace geohybrid::coupling::testing;
 
 namespace
 {
+/// Two patches end in the same state, bit for bit: the particles' positions and velocities and
+/// the continuum's displacement.
+void expect_same_bits(const CoupledPatch &first, const CoupledPatch &second)
+{
+  const dem::ParticleSet &a = first.particles->particles(), &b = second.particles->particles();
+  ASSERT_EQ(a.n_bodies(), b.n_bodies());
+  for (std::size_t k = 0; k < a.n_bodies(); ++k)
+    {
+      EXPECT_EQ(a.x[k], b.x[k]);
+      EXPECT_EQ(a.y[k], b.y[k]);
+      EXPECT_EQ(a.vx[k], b.vx[k]);
+      EXPECT_EQ(a.vy[k], b.vy[k]);
+    }
+  const auto &u = first.continuum->displacement(), &w = second.continuum->displacement();
+  ASSERT_EQ(u.locally_owned_size(), w.locally_owned_size());
+  for (unsigned int i = 0; i < u.locally_owned_size(); ++i)
+    EXPECT_EQ(u.local_element(i), w.local_element(i));
+}
+
 // The column at rest with the continuum at 4 particle steps: each model carries the weight above
 // it within the lockstep's 2 %, with no step across the band, the tied discs on the continuum to
 // round-off at the windows' ends (they move at its velocity through each window), and the energy
@@ -97,16 +116,7 @@ TEST(MultiRate, ContinuedFromTheMiddleOfAWindowIsBitForBit)
   second.continuum->restore_state(first.continuum->export_state());
   second.stepper->restore_window_phase(first.stepper->window_phase());
   second.stepper->run_steps(201);
-  const dem::ParticleSet &a = straight.particles->particles(), &b = second.particles->particles();
-  ASSERT_EQ(a.n_bodies(), b.n_bodies());
-  for (std::size_t k = 0; k < a.n_bodies(); ++k)
-    {
-      EXPECT_EQ(a.x[k], b.x[k]);
-      EXPECT_EQ(a.vx[k], b.vx[k]);
-    }
-  const auto &u = straight.continuum->displacement(), &w = second.continuum->displacement();
-  for (unsigned int i = 0; i < u.locally_owned_size(); ++i)
-    EXPECT_EQ(u.local_element(i), w.local_element(i));
+  expect_same_bits(straight, second);
   EXPECT_NE(invalid_argument_message([&] { second.stepper->restore_window_phase(4); }).find("window phase 4"),
             std::string::npos);
 }
@@ -127,17 +137,8 @@ TEST(MultiRate, OneAndTwoThreadsGiveTheSameBits)
     return patch;
   };
   const CoupledPatch one = run_on(1), two = run_on(2);
-  const dem::ParticleSet &a = one.particles->particles(), &b = two.particles->particles();
-  ASSERT_EQ(a.n_bodies(), b.n_bodies());
-  for (std::size_t k = 0; k < a.n_bodies(); ++k)
-    {
-      EXPECT_EQ(a.x[k], b.x[k]);
-      EXPECT_EQ(a.vy[k], b.vy[k]);
-    }
-  const auto &u = one.continuum->displacement(), &w = two.continuum->displacement();
-  for (unsigned int i = 0; i < u.locally_owned_size(); ++i)
-    EXPECT_EQ(u.local_element(i), w.local_element(i));
-  EXPECT_GT(u.linfty_norm(), 0.0); // the pulse reached the continuum
+  expect_same_bits(one, two);
+  EXPECT_GT(one.continuum->displacement().linfty_norm(), 0.0); // the pulse reached the continuum
 }
 
 // A ratio the continuum cannot take, and multi-rate with the penalty springs: refused, naming the entry.
