@@ -80,8 +80,8 @@ public:
 private:
   using Matrix = Eigen::SparseMatrix<double>;
   using Factor = Eigen::SimplicialLDLT<Matrix>;
-  /// x = A^-1 b with the stored factor, without allocating (Eigen's solve() permutes through a
-  /// temporary, work_[component]).
+  /// x = A^-1 b with the stored factor, without allocating: the permutation goes through
+  /// work_[component], not the temporary of Eigen's solve().
   void solve(unsigned int component, const Eigen::VectorXd &b, Eigen::VectorXd &x);
   /// node_predictor_ = v_I + tau (f_ext - f_int) / M_I at the band's nodes (prescribed: v_I).
   void predict_nodes(const fem::ExplicitSolver &continuum, double tau);
