@@ -96,7 +96,10 @@ void declare_hybrid_parameters(ParameterHandler &prm)
   prm.declare_entry("continuum step ratio", std::to_string(region.continuum_step_ratio), Patterns::Integer(0),
                     "hybrid mode, coupling method = " + multipliers + ": the continuum steps once per this many "
                     "particle steps (multi-rate: its stable step is many of the particles'; docs/coupling.md); 1 "
-                    "steps both together, 0 takes the largest ratio the continuum is stable at [-]");
+                    "steps both together, 0 takes the largest ratio the continuum is stable at, up to " +
+                      std::to_string(coupling::MultiRate::largest_automatic_ratio) +
+                      " (larger ratios raise the tied grains' inertia by the ratio squared, which moved the mean "
+                      "tension; VALIDATION.md 6.4) [-]");
   prm.declare_entry("particles from", "", Patterns::Anything(),
                     "hybrid mode: empty fills the particle box in its own lifts; a dem-mode run's filled_tank.h5 "
                     "(the same input but for the mode and subsections Hybrid, Continuum, Pull, Output) cuts the box "

@@ -190,7 +190,7 @@ double CoupledStepper::choose_ratio(unsigned int requested_ratio)
   const double step = std::min(particle_stable_step(), particles_.time_step());
   const double stable = continuum_.stable_time_step();
   const auto most = static_cast<unsigned int>(std::max(1.0, std::floor(stable / step * (1.0 + 1e-12))));
-  ratio_ = requested_ratio == 0 ? most : requested_ratio;
+  ratio_ = requested_ratio == 0 ? std::min(most, MultiRate::largest_automatic_ratio) : requested_ratio;
   if (ratio_ * step > stable * (1.0 + 1e-12))
     {
       std::ostringstream message;

@@ -126,8 +126,12 @@ struct BandTreatment
 /// The continuum's step as a number of particle steps (multi-rate stepping, method 1 only).
 struct MultiRate
 {
-  /// 1: both at one step; 0: the largest ratio whose step the continuum takes stably [-].
+  /// 1: both at one step; 0: automatic, the largest stable ratio up to largest_automatic_ratio [-].
   unsigned int continuum_step_ratio = 1;
+  /// The automatic ratio's cap. The tied grains' inertia grows as the ratio squared: at 4 (x 16)
+  /// the largest tank's mean tension fell 7-8 % below lockstep's, at 2 (x 4) it was lockstep's
+  /// (VALIDATION.md 6.4), for 1-4 % more cost, since the particles keep their step.
+  static constexpr unsigned int largest_automatic_ratio = 2;
 };
 
 class CoupledStepper

@@ -105,7 +105,7 @@ struct HybridRegionSpec
   /// pull-out needs the band's statics, not its weighted dynamics, and the step goes back to the
   /// particles' own.
   bool scale_band_inertia = true;
-  /// The continuum's step in particle steps (MultiRate; method 1 only): 1 lockstep, 0 the largest stable.
+  /// The continuum's step in particle steps (MultiRate; method 1 only): 1 lockstep, 0 automatic.
   unsigned int continuum_step_ratio = 1;
   /// Before the coupling, the box's top (if the continuum lies above it) is loaded by the weight
   /// of the soil above it, gamma (fill - y1), through a frictionless lid servo-controlled to that

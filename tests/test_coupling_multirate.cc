@@ -153,20 +153,28 @@ TEST(MultiRate, RefusesAnUnstableRatioAndThePenaltySprings)
   EXPECT_NE(penalty.find("needs the multipliers"), std::string::npos) << penalty;
 }
 
-// Ratio 0 takes the largest ratio the continuum is stable at: with the particles at a tenth of the
-// lockstep's step, at least 10 (the lockstep's step is within the continuum's stable step).
-TEST(MultiRate, AutomaticRatioIsTheLargestStableOne)
+// Ratio 0 takes the largest ratio the continuum is stable at, up to MultiRate's cap (2): with the
+// particles at a tenth of the lockstep's step the continuum could take 10 or more (the lockstep's
+// step is within its stable step) and takes 2; a ratio of 10 given is taken. (The patch's
+// particles cannot step above half the continuum's stable step, so the cap's other side, 1, is
+// reached only in coupled_stepper.cc's min.)
+TEST(MultiRate, AutomaticRatioIsTheLargestStableOneUpToTheCap)
 {
   const double lockstep = coupled_patch_at_rest(LagrangeMultiplierCoupling{}).stepper->time_step();
-  const CoupledPatch patch =
+  const CoupledPatch fine =
     coupled_patch_at_rest(LagrangeMultiplierCoupling{}, {}, undamped_settings(0.1 * lockstep), {}, MultiRate{0});
-  const unsigned int ratio = patch.stepper->continuum_step_ratio();
-  const double stable = patch.continuum->stable_time_step();
-  std::cout << "automatic ratio " << ratio << " (continuum step " << ratio * patch.stepper->time_step()
-            << " s, stable " << stable << " s)" << std::endl;
-  EXPECT_GE(ratio, 10u);
-  EXPECT_LE(ratio * patch.stepper->time_step(), stable * (1.0 + 1e-12));
-  EXPECT_GT((ratio + 1) * patch.stepper->time_step(), stable);
+  const double stable = fine.continuum->stable_time_step();
+  std::cout << "automatic ratio " << fine.stepper->continuum_step_ratio() << " at a particle step of "
+            << fine.stepper->time_step() << " s (continuum stable at " << stable << " s)" << std::endl;
+  ASSERT_GE(stable / fine.stepper->time_step(), 10.0);
+  EXPECT_EQ(fine.stepper->continuum_step_ratio(), MultiRate::largest_automatic_ratio);
+  EXPECT_EQ(MultiRate::largest_automatic_ratio, 2u);
+
+  // The cap is the automatic choice's only: a larger ratio given in the input is taken.
+  const CoupledPatch given =
+    coupled_patch_at_rest(LagrangeMultiplierCoupling{}, {}, undamped_settings(0.1 * lockstep), {}, MultiRate{10});
+  EXPECT_EQ(given.stepper->continuum_step_ratio(), 10u);
+  EXPECT_LE(10 * given.stepper->time_step(), stable * (1.0 + 1e-12));
 }
 
 // A small hybrid tank (0.4 m x 0.2 m, about 1,500 grains in the box, the multipliers) set up and
