@@ -41,7 +41,7 @@ BandParticles::BandParticles(const OverlapBand &band, const dem::ParticleSet &pa
   , reference_position(positions(band, particles, tie_margin, driven_from, Role::tied))
   , points(space, layout, reference_position, tie_margin)
   , driven_reference_position(positions(band, particles, tie_margin, driven_from, Role::driven))
-  , driven_points(space, layout, driven_reference_position)
+  , driven_points(space, layout, driven_reference_position, tie_margin)
 {
   for (std::size_t b = 0; b < particles.n_bodies(); ++b)
     {

@@ -36,8 +36,10 @@ struct BandParticles
 
   /// Tied: the bodies of `particles` with -tie_margin < s < s_d, located in `space`'s mesh
   /// (extrapolated up to tie_margin outside it); driven: those with s >= s_d, where s_d =
-  /// band.driven_from(driven_below_weight) (w for 0: only those past the band). Throws
-  /// std::invalid_argument if no particle is tied or one lies farther outside the mesh.
+  /// band.driven_from(driven_below_weight) (w for 0: only those past the band), located alike
+  /// (a grain at a free surface that the box and the continuum share stands a little above the
+  /// mesh's top). Throws std::invalid_argument if no particle is tied or one lies farther outside
+  /// the mesh.
   BandParticles(const OverlapBand &band, const dem::ParticleSet &particles, const fem::DisplacementSpace &space,
                 const BandPoints::Vector &layout, double tie_margin, double driven_below_weight = 0.0);
   std::size_t size() const { return body.size(); }

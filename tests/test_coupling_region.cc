@@ -369,4 +369,35 @@ TEST(RegionBand, PatchTestAcrossAHorizontalSide)
   EXPECT_LT(ghost.continuum_nodes, 5e-2);
   EXPECT_GT(ghost.continuum_nodes, 1e-4); // the band's quadrature error (README), not round-off
 }
+
+// A driven grain whose centre stands a little above the continuum's free top (a grain at the fill's
+// surface where a particle box reaches it: the largest tank's box at a 0.25 m margin stopped so,
+// 0.3 mm above the mesh) is located by extrapolation, as a tied grain just outside the mesh is; a
+// grain more than a branch (here two radii) outside is refused, naming its position.
+TEST(RegionBand, DrivenGrainsJustAboveTheMeshTopAreLocated)
+{
+  HorizontalPatch layout;
+  const PatchGeometry &g = layout.g;
+  const double rows_top = layout.a + g.band_width + 1.0; // the lattice's rows reach below this [spacings]
+  const double h = g.row_height() / g.spacing();
+  unsigned int top_row = 0;
+  while ((top_row + 1) * h < rows_top)
+    ++top_row;
+  // The mesh's top a tenth of a radius below the top row's centres.
+  layout.end = top_row * h - 0.1 * g.radius / g.spacing();
+  const HorizontalPatchResult near = horizontal_side_patch_test(layout, PlaneStrain{1.0e-7, -0.4e-7, 0.3e-7});
+  EXPECT_GE(near.n_driven, layout.columns); // the top row at least
+  EXPECT_LT(near.ghost.particles_outside_band, 1e-6);
+  // Three radii below them: the top row lies beyond the extrapolation.
+  layout.end = top_row * h - 3.0 * g.radius / g.spacing();
+  try
+    {
+      horizontal_side_patch_test(layout, PlaneStrain{1.0e-7, -0.4e-7, 0.3e-7});
+      ADD_FAILURE() << "a grain three radii above the mesh was located";
+    }
+  catch (const std::invalid_argument &e)
+    {
+      EXPECT_NE(std::string(e.what()).find("lies outside the continuum's mesh"), std::string::npos) << e.what();
+    }
+}
 } // namespace
