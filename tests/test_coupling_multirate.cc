@@ -156,8 +156,8 @@ TEST(MultiRate, RefusesAnUnstableRatioAndThePenaltySprings)
 // Ratio 0 takes the largest ratio the continuum is stable at, up to MultiRate's cap (2): with the
 // particles at a tenth of the lockstep's step the continuum could take 10 or more (the lockstep's
 // step is within its stable step) and takes 2; a ratio of 10 given is taken. (The patch's
-// particles cannot step above half the continuum's stable step, so the cap's other side, 1, is
-// reached only in coupled_stepper.cc's min.)
+// particles cannot step above half the continuum's stable step, so a largest stable ratio below
+// the cap is not reached here.)
 TEST(MultiRate, AutomaticRatioIsTheLargestStableOneUpToTheCap)
 {
   const double lockstep = coupled_patch_at_rest(LagrangeMultiplierCoupling{}).stepper->time_step();
