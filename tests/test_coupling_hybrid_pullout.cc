@@ -67,6 +67,26 @@ TEST(ParticleBox, SpansTheSheetAndTheMarginInWholeLifts)
   EXPECT_NEAR(d.y0, 0.0, 1e-12);
 }
 
+// The box's soil is made as the tank's would be at its place: a floor inside the tank's first
+// lift stands for the tank's base, whose loose band that lift's porosity counts; a floor higher
+// up has soil below it in the tank, and the box's first lift is measured a band above it
+// (TankFillingSpec::soil_continues_below). The top is the soil's surface or it is shared.
+TEST(ParticleBox, FirstLiftMeasuredAboveItsFloorOnlyWhereTheTankHasSoilBelow)
+{
+  const ParticleBox in_first_lift = particle_box(full_size_spec(), "test"); // floor 0.1 m, first lift to 0.2 m
+  EXPECT_TRUE(in_first_lift.bottom_shared);
+  EXPECT_FALSE(in_first_lift.box_tank.filling.soil_continues_below);
+  EXPECT_TRUE(in_first_lift.box_tank.filling.soil_continues_above);
+
+  HybridPullOutSpec deep = full_size_spec(); // 1.0 m of fill in lifts of 0.2 m, the sheet at 0.6 m
+  deep.tank.geometry.fill_height = 1.0;
+  deep.tank.filling.n_layers = 5;
+  deep.tank.filling.n_particles = 40000;
+  const ParticleBox above = particle_box(deep, "test");
+  EXPECT_NEAR(above.y0, 0.5, 1e-12);
+  EXPECT_TRUE(above.box_tank.filling.soil_continues_below);
+}
+
 TEST(ParticleBox, RefusesAMarginThatLeavesNoContinuumAndBadInput)
 {
   HybridPullOutSpec whole = full_size_spec();

@@ -175,6 +175,36 @@ TEST(TankFilling, SoilGoingOnAboveTheFillIsMeasuredABandBelowTheLid)
             << last.growth_friction_deg << " deg\n";
 }
 
+// A fill whose soil goes on below it (a particle box over a continuum) measures its first lift's
+// porosity a band above its floor, the loose grains along that temporary floor left out, as pure
+// DEM's soil at that level has none; the other slabs as before. Each lift reaches its porosity on
+// the measured part, and the first lift's whole slab, its loose band along the floor with it, is
+// looser than that.
+TEST(TankFilling, SoilGoingOnBelowTheFillIsMeasuredABandAboveTheFloor)
+{
+  TankFillingSpec spec = two_lifts();
+  spec.soil_continues_below = true;
+  const FilledTank tank = fill_tank_in_layers(spec);
+  const double band = largest_particle_extent(spec);
+  const TankLayer &first = tank.layers[0], &last = tank.layers[1];
+  EXPECT_NEAR(first.measured_bottom, first.bottom + band, 1e-12);
+  EXPECT_EQ(first.measured_top, first.top);
+  EXPECT_EQ(last.measured_bottom, last.bottom);
+  EXPECT_EQ(last.measured_top, last.top);
+  const ParticleSet &p = tank.system.particles();
+  for (const TankLayer &layer : tank.layers)
+    {
+      EXPECT_LE(layer.porosity_grown, layer.target_porosity + 0.5 * spec.porosity_tolerance + 1e-12);
+      EXPECT_EQ(layer.porosity, slab_porosity(p, 0.0, spec.width, layer.measured_bottom, layer.measured_top));
+      EXPECT_NEAR(layer.porosity, layer.target_porosity, 2.0 * spec.porosity_tolerance);
+    }
+  const double whole_first = slab_porosity(p, 0.0, spec.width, first.bottom, first.top);
+  EXPECT_GT(whole_first, first.porosity + 0.5 * spec.porosity_tolerance);
+  std::cout << "band " << band << " m; the first lift's porosity " << first.porosity << " measured, " << whole_first
+            << " over its whole slab; growth friction " << first.growth_friction_deg << ", "
+            << last.growth_friction_deg << " deg\n";
+}
+
 // The slab porosity cuts discs exactly: a disc of radius r centred on the slab's bottom edge
 // puts half its area in the slab.
 TEST(TankFilling, SlabPorosityCutsDiscsExactly)

@@ -122,7 +122,7 @@ public:
     : t_(t), cumulative_space_(t.n_layers + 1, 0.0)
   {
     const std::size_t n_layers = t.n_layers;
-    if (n_layers > 1 || t.soil_continues_above)
+    if (n_layers > 1 || t.soil_continues_above || t.soil_continues_below)
       {
         const RedfSpec whole = layer_redf_spec(t, 0, t.n_particles, porosity(0));
         const double thinnest = thinnest_layer(t);
@@ -144,8 +144,11 @@ public:
   double top(std::size_t k) const { return layer_top(t_, k); }
   double lid(std::size_t k) const { return has_band(k) ? top(k) + band_ : top(k); }
   /// The part of lift k's slab whose porosity its growth aims at: a band below a lid past which
-  /// the soil goes on.
-  double measured_bottom(std::size_t k) const { return bottom(k); }
+  /// the soil goes on, a band above a base below which it goes on.
+  double measured_bottom(std::size_t k) const
+  {
+    return k == 0 && t_.soil_continues_below ? bottom(k) + band_ : bottom(k);
+  }
   double measured_top(std::size_t k) const
   {
     return k + 1 == t_.n_layers && t_.soil_continues_above ? top(k) - band_ : top(k);

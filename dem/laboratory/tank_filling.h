@@ -133,6 +133,12 @@ struct TankFillingSpec
   /// sheet and a lid could not reach porosity 0.2 even without friction. (A shared base is still
   /// measured to it: left out there too, the lift above a 0.1 m first lift jammed instead.)
   bool soil_continues_above = false;
+  /// The soil goes on below the fill's base (a particle box over a continuum): the base is a
+  /// temporary floor, and the loose band of grains along it is left out of the first lift's
+  /// porosity, measured a band above it. Measured to the floor, the first lift's grains made up
+  /// for that band's hollows: 0.7 % more solid 0.05-0.13 m above it than pure DEM's soil at the
+  /// same place in the same tank (the 3.7 m x 1.2 m tank's box, three seeds).
+  bool soil_continues_below = false;
   ContactParameters wall_contact;      ///< the tank's walls and the lid
   double gravity = 9.81;               ///< [m/s^2], pointing down (-y)
   double local_damping = 0.7;          ///< during growth and settling [-]
@@ -166,8 +172,9 @@ struct TankWalls
 struct TankLayer
 {
   double bottom = 0.0, top = 0.0;     ///< levels of the layer's slab [m]
-  /// The part of the slab whose porosity is measured: the slab but a band below a top beyond
-  /// which the soil goes on (TankFillingSpec::soil_continues_above) [m].
+  /// The part of the slab whose porosity is measured: the slab but a band below a top above which,
+  /// or above a base below which, the soil goes on (TankFillingSpec::soil_continues_above,
+  /// soil_continues_below) [m].
   double measured_bottom = 0.0, measured_top = 0.0;
   /// The particles placed for this layer: bodies [first_body, first_body + n_bodies). Their
   /// number is in proportion to the space the layer fills (the first layer fills its band too,
