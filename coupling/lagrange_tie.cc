@@ -48,25 +48,27 @@ LagrangeTie::LagrangeTie(const BandParticles &band, const dem::ParticleSet &part
       gap_[c].resize(n);
       multiplier_[c].resize(n);
       work_[c].resize(n);
-      check_[c].resize(n);
     }
   n_threads_ = static_cast<int>(std::max(1u, continuum.settings().n_threads));
   node_predictor_.assign(mass.locally_owned_size(), 0.0);
+  // Each DoF the band's points interpolate from, once (a node is shared by the points round it).
+  for (std::size_t p = 0; p < n; ++p)
+    for (unsigned int k = 0; k < n_nodes; ++k)
+      band_dofs_.insert(band_dofs_.end(), {band.points.x_dof(p, k), band.points.y_dof(p, k)});
+  std::sort(band_dofs_.begin(), band_dofs_.end());
+  band_dofs_.erase(std::unique(band_dofs_.begin(), band_dofs_.end()), band_dofs_.end());
 }
 
 void LagrangeTie::predict_nodes(const fem::ExplicitSolver &continuum, double tau)
 {
-  const BandParticles &band = *band_;
   const auto &velocity = continuum.velocity();
   const auto &mass = continuum.lumped_mass();
   const auto &f_ext = continuum.external_force(), &f_int = continuum.internal_force();
-  for (std::size_t p = 0; p < band.size(); ++p)
-    for (unsigned int k = 0; k < band.points.nodes_per_point(); ++k)
-      for (const unsigned int dof : {band.points.x_dof(p, k), band.points.y_dof(p, k)})
-        node_predictor_[dof] = velocity.local_element(dof) +
-                               (continuum.is_constrained(dof)
-                                  ? 0.0
-                                  : tau * (f_ext.local_element(dof) - f_int.local_element(dof)) / mass.local_element(dof));
+  for (const unsigned int dof : band_dofs_)
+    node_predictor_[dof] = velocity.local_element(dof) +
+                           (continuum.is_constrained(dof)
+                              ? 0.0
+                              : tau * (f_ext.local_element(dof) - f_int.local_element(dof)) / mass.local_element(dof));
 }
 
 void LagrangeTie::solve(unsigned int component, const Eigen::VectorXd &b, Eigen::VectorXd &x)
@@ -99,11 +101,10 @@ void LagrangeTie::add_to_nodes(fem::ExplicitSolver &continuum, std::size_t p, un
 void LagrangeTie::solve_and_apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, double tau,
                                   double continuum_share, CouplingForceSums &sums)
 {
-  double gap[2] = {0.0, 0.0};
 #pragma omp parallel for num_threads(2) schedule(static, 1) if (n_threads_ > 1)
   for (int c = 0; c < 2; ++c)
-    gap[c] = solve_component(static_cast<unsigned int>(c), particles, tau);
-  largest_velocity_gap_ = std::max(gap[0], gap[1]);
+    solve_component(static_cast<unsigned int>(c), particles, tau);
+  last_solve_tau_ = tau;
   // On one thread: a node's x and y forces share a cache line, as do the sums' components.
   const BandParticles &band = *band_;
   for (unsigned int c = 0; c < 2; ++c)
@@ -119,12 +120,24 @@ void LagrangeTie::solve_and_apply(dem::ParticleSet &particles, fem::ExplicitSolv
     }
 }
 
-double LagrangeTie::solve_component(unsigned int c, const dem::ParticleSet &particles, double tau)
+double LagrangeTie::largest_velocity_gap() const
+{
+  double largest_gap = 0.0;
+  for (unsigned int c = 0; last_solve_tau_ > 0.0 && c < 2; ++c)
+    {
+      const Eigen::VectorXd check = matrix_[c] * multiplier_[c];
+      for (Eigen::Index p = 0; p < check.size(); ++p)
+        largest_gap = std::max(largest_gap, last_solve_tau_ * std::abs(check[p] - gap_[c][p]));
+    }
+  return largest_gap;
+}
+
+void LagrangeTie::solve_component(unsigned int c, const dem::ParticleSet &particles, double tau)
 {
   const BandParticles &band = *band_;
   const unsigned int n_nodes = band.points.nodes_per_point();
   const std::size_t n = band.size();
-  Eigen::VectorXd &gap = gap_[c], &multiplier = multiplier_[c], &check = check_[c];
+  Eigen::VectorXd &gap = gap_[c], &multiplier = multiplier_[c];
   const double *const v = c == 0 ? particles.vx.data() : particles.vy.data();
   const double *const force = c == 0 ? particles.fx.data() : particles.fy.data();
   for (std::size_t p = 0; p < n; ++p)
@@ -137,11 +150,6 @@ double LagrangeTie::solve_component(unsigned int c, const dem::ParticleSet &part
       gap[p] = (v[b] + tau * force[b] * particles.inverse_mass[b] - interpolated) / tau;
     }
   solve(c, gap, multiplier);
-  check.noalias() = matrix_[c] * multiplier;
-  double largest_gap = 0.0;
-  for (std::size_t p = 0; p < n; ++p)
-    largest_gap = std::max(largest_gap, tau * std::abs(check[p] - gap[p]));
-  return largest_gap;
 }
 
 void LagrangeTie::apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, const TieTiming &timing,
@@ -182,7 +190,7 @@ void LagrangeTie::apply_within_window(dem::ParticleSet &particles, const fem::Ex
 {
   const BandParticles &band = *band_;
   const auto &velocity = continuum.velocity(); // the window's half-step velocity
-  largest_velocity_gap_ = 0.0;
+  last_solve_tau_ = 0.0; // each particle's multiplier closes its gap exactly
   for (unsigned int c = 0; c < 2; ++c)
     {
       const double *const v = c == 0 ? particles.vx.data() : particles.vy.data();

@@ -70,8 +70,9 @@ public:
                            CouplingForceSums &sums);
 
   /// The largest |tau A lambda - g*| of the last apply(): the velocity gap the correction leaves,
-  /// round-off when the solve is right [m/s].
-  double largest_velocity_gap() const { return largest_velocity_gap_; }
+  /// round-off when the solve is right [m/s]. Computed when asked (a product with A per
+  /// component), not in every step: only a check needs it.
+  double largest_velocity_gap() const;
   double squared_frequency_bound(const dem::ParticleSet &, const fem::ExplicitSolver &) const
   {
     return 0.0; // the constraint adds no stiffness (it only joins masses)
@@ -90,9 +91,8 @@ private:
   /// tau over the continuum's impulse time, 1 in lockstep).
   void solve_and_apply(dem::ParticleSet &particles, fem::ExplicitSolver &continuum, double tau,
                        double continuum_share, CouplingForceSums &sums);
-  /// multiplier_[c] from the predictors' gap in component c (on a thread of its own); returns
-  /// the largest velocity gap the solve leaves.
-  double solve_component(unsigned int c, const dem::ParticleSet &particles, double tau);
+  /// multiplier_[c] from the predictors' gap in component c (on a thread of its own).
+  void solve_component(unsigned int c, const dem::ParticleSet &particles, double tau);
   /// Adds band particle p's `force` (component 0: x, 1: y) to its nodes' external force.
   void add_to_nodes(fem::ExplicitSolver &continuum, std::size_t p, unsigned int component, double force,
                     CouplingForceSums &sums) const;
@@ -100,9 +100,11 @@ private:
   const BandParticles *band_;
   std::array<Matrix, 2> matrix_;
   std::array<std::unique_ptr<Factor>, 2> factor_;
-  std::array<Eigen::VectorXd, 2> gap_, multiplier_, work_, check_; // per component
+  std::array<Eigen::VectorXd, 2> gap_, multiplier_, work_; // per component
   int n_threads_ = 1; ///< the continuum's (its settings): 2 or more solve the components at once
   std::vector<double> node_predictor_; ///< v*_I per local DoF touched by the band
-  double largest_velocity_gap_ = 0.0;
+  std::vector<unsigned int> band_dofs_; ///< those DoFs, each once, rising
+  /// The impulse time of the last solve; 0 when the last step was within a window (no solve).
+  double last_solve_tau_ = 0.0;
 };
 } // namespace geohybrid::coupling
