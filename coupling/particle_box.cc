@@ -107,13 +107,9 @@ ParticleBox box_in_lifts(const HybridPullOutSpec &spec, const Lifts &lifts, cons
   t.filling.layer_tops = lifts.tops;
   t.filling.n_particles = box.n_particles;
   // A shared top is not the soil's surface: the top lift's porosity is measured a band below it.
-  // The box's soil is made as pure DEM's tank would have it at the same place: where the tank's
-  // first lift holds the box's floor, that lift's porosity counts the loose band along the tank's
-  // base, and the box's first lift counts the band along its floor in its stead; higher up, the
-  // tank's soil has no such band, and the first lift's porosity is measured a band above the
-  // floor. Counted there too, the 3.7 m x 1.2 m tank's box (floor 0.65 m up, in the tank's
-  // fourth lift) had a solid fraction of 0.809 0.05-0.13 m above its floor against pure DEM's
-  // 0.801 there, and a mean tension over the pull 11 % higher (VALIDATION.md 6.4).
+  // A floor inside the tank's first lift stands for the tank's base, whose loose band that lift
+  // counts; above it the tank's soil has no floor band, so the first lift is measured a band
+  // above the floor (docs/coupling.md, "Layout"; VALIDATION.md 6.4, "The box's floor").
   t.filling.soil_continues_above = box.top_shared;
   t.filling.soil_continues_below = box.bottom_shared && box.y0 >= dem::layer_top(spec.tank.resolved_filling(), 0) - 1e-9;
   if (!t.filling.layer_porosities.empty())
